@@ -1,0 +1,1 @@
+//! Reading and writing problems: plcp's JSON format and the Siconos `.dat` format.

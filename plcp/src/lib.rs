@@ -1,0 +1,88 @@
+//! # plcp: parametric linear complementarity problems
+//!
+//! Given `M` (order `p + n`), `q`, `d` and a parameter `L` rising from `L0` to
+//! `L_max` (finite or infinite), trace the solution of
+//!
+//! ```text
+//! 0 = (M x + q + L d)[0..p]                       equality rows, u = x[0..p] free
+//! w = (M x + q + L d)[p..p+n],   z = x[p..p+n],
+//! w >= 0,   z >= 0,   w'z = 0
+//! ```
+//!
+//! as a piecewise-affine [`Path`]: breakpoints (which variable entered, which
+//! left), segments (basis, and `z, w, u` affine in `L`), evaluation at any `L`,
+//! and an [`Info`] record that says how well the answer is known (pivots,
+//! refactorisations, residuals of the equation, feasibility and complementarity
+//! at every breakpoint, time). With `p = 0` this is the standard form
+//! `w = q + L d + M z`.
+//!
+//! Two algorithms share one pivoting core:
+//!
+//! * [`Method::Lemke`]: Lemke-style complementary pivoting with `L` as the
+//!   driving variable, on the standard form. If `q + L0 d` is not nonnegative
+//!   the LCP at `L0` is first solved by Lemke's method with an artificial
+//!   variable and a covering vector. A mixed problem is reduced to standard form
+//!   by a Schur complement on its free block (which must be nonsingular).
+//! * [`Method::Wolfe`]: Wolfe's simplex method for QP in its long form, on the
+//!   unreduced tableau of the mixed system: free variables are made basic as far
+//!   as the rank of the free block allows, dependent equality rows keep an
+//!   artificial variable fixed at zero, and `L` rises by pivots with restricted
+//!   basis entry (`z_i`, `w_i` never both basic).
+//!
+//! Degeneracy is handled by a lexicographic minimum-ratio rule, so no basis
+//! repeats. Outcomes are [`Status`] values in the path, never errors; bad input
+//! is a [`PlcpError`] at construction.
+//!
+//! Everything is generic over the [`Scalar`] trait: `f32`, `f64` and
+//! `faer::fx128` (double-double).
+//!
+//! ```
+//! use faer::{mat, col};
+//! use plcp::{Plcp, Settings, Status};
+//!
+//! // w = q + L d + M z with M positive definite: a unique solution for every L.
+//! let m = mat![[2.0, 1.0], [1.0, 2.0]];
+//! let q = col![1.0, 1.0];
+//! let d = col![-1.0, -0.5];
+//! let problem = Plcp::new(m.as_ref(), q.as_ref(), d.as_ref()).unwrap();
+//! let path = plcp::solve(&problem, &Settings::default()).unwrap();
+//! assert_eq!(path.status, Status::UnboundedRay); // holds for every larger L
+//! assert_eq!(path.breakpoints[0].lambda, 1.0);   // w0 = 1 - L reaches zero at L = 1
+//! let at = path.at(3.0).unwrap();
+//! assert!(at.w.iter().zip(at.z.iter()).all(|(w, z)| *w >= -1e-12 && *z >= -1e-12));
+//! ```
+#![warn(missing_docs)]
+
+pub mod basis;
+pub mod error;
+pub mod io;
+pub mod lemke;
+pub mod path;
+mod pivoting;
+pub mod problem;
+pub mod reduce;
+pub mod residual;
+pub mod scalar;
+pub mod settings;
+pub mod tolerance;
+pub mod wolfe;
+
+pub use error::PlcpError;
+pub use lemke::{solve_lcp, LcpSolution};
+pub use path::{Breakpoint, FreeBlockInfo, Info, Path, Point, Ray, Residual, Segment, Status, Var};
+pub use problem::{Lcp, Plcp};
+pub use scalar::{Precision, Scalar};
+pub use settings::{Method, Settings};
+
+/// Traces the solution path of `problem` with the method chosen in `settings`.
+///
+/// Returns `Err` only for invalid settings, or for [`Method::Lemke`] on a mixed
+/// problem whose free block is singular (use [`Method::Wolfe`] there). Every
+/// outcome of the algorithm itself is a [`Status`] in the returned path.
+pub fn solve<T: Scalar>(problem: &Plcp<T>, settings: &Settings<T>) -> Result<Path<T>, PlcpError> {
+    settings.validate(problem.n())?;
+    match settings.method {
+        Method::Lemke => lemke::solve(problem, settings),
+        Method::Wolfe => wolfe::solve(problem, settings),
+    }
+}

@@ -1,0 +1,299 @@
+//! The answer: a piecewise-affine path of solutions, its breakpoints, and how well it is known.
+
+use crate::scalar::Scalar;
+use faer::Col;
+
+/// A variable of the problem, as events and bases name it.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub enum Var {
+    /// Complementary slack `w_i` (0-based).
+    W(usize),
+    /// Complementary variable `z_i` (0-based).
+    Z(usize),
+    /// Free variable `u_j` (mixed form, 0-based).
+    U(usize),
+    /// The parameter `L`.
+    Lambda,
+    /// The artificial variable of an equality row (Wolfe long form; never part of an answer).
+    Artificial(usize),
+}
+
+impl Var {
+    /// The complementary partner (`w_i` <-> `z_i`), if any.
+    pub fn complement(self) -> Option<Var> {
+        match self {
+            Var::W(i) => Some(Var::Z(i)),
+            Var::Z(i) => Some(Var::W(i)),
+            _ => None,
+        }
+    }
+}
+
+impl core::fmt::Display for Var {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        match self {
+            Var::W(i) => write!(f, "w{i}"),
+            Var::Z(i) => write!(f, "z{i}"),
+            Var::U(i) => write!(f, "u{i}"),
+            Var::Lambda => write!(f, "L"),
+            Var::Artificial(i) => write!(f, "a{i}"),
+        }
+    }
+}
+
+/// How the path ended. An outcome, not an error: read it before using the path.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Status {
+    /// The path reached `lambda_max` (or, for a plain LCP, the LCP was solved).
+    Reached,
+    /// The last segment holds for every larger `L`: success when `lambda_max` is infinite.
+    UnboundedRay,
+    /// No solution on this path beyond `lambda_reached`: the method ended on a
+    /// secondary ray (`Path::ray` holds its direction).
+    SecondaryRay,
+    /// The pivot limit was hit at `lambda_reached`.
+    PivotLimit,
+    /// The basis became too ill-conditioned for the working precision at
+    /// `lambda_reached`; `Path::message` holds the evidence. Try a higher precision.
+    IllConditioned,
+    /// No solution was found at the start value `lambda0` (the start phase ended
+    /// on a secondary ray; for copositive-plus `M` this proves infeasibility),
+    /// or the equality rows are inconsistent.
+    Infeasible,
+}
+
+impl Status {
+    /// The name used in JSON output (`reached`, `unbounded_ray`, ...).
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Status::Reached => "reached",
+            Status::UnboundedRay => "unbounded_ray",
+            Status::SecondaryRay => "secondary_ray",
+            Status::PivotLimit => "pivot_limit",
+            Status::IllConditioned => "ill_conditioned",
+            Status::Infeasible => "infeasible",
+        }
+    }
+    /// True when the path covers the whole requested range.
+    pub fn is_success(self) -> bool {
+        matches!(self, Status::Reached | Status::UnboundedRay)
+    }
+}
+
+/// A change of basis on the path.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Breakpoint<T: Scalar> {
+    /// The parameter value.
+    pub lambda: T,
+    /// The variable that entered the basis.
+    pub entering: Var,
+    /// The variable that left it.
+    pub leaving: Var,
+    /// The step before this pivot had zero length (in the moving variable).
+    pub degenerate: bool,
+    /// From here on `L` decreases along the path (a turning point).
+    pub turning: bool,
+}
+
+/// One piece of the path: every variable is affine in `L` on it.
+///
+/// Values are stored as the value at `lambda_from` plus a slope, which keeps
+/// them accurate far from `L = 0`; [`Segment::z0`] etc. give the base at `L = 0`.
+#[derive(Clone, Debug)]
+pub struct Segment<T: Scalar> {
+    /// Parameter at the start of the segment.
+    pub lambda_from: T,
+    /// Parameter at its end (`+inf` as `T::max_value()` is never used: see `unbounded`).
+    pub lambda_to: T,
+    /// True for the last segment of an unbounded ray: it holds for all `L >= lambda_from`.
+    pub unbounded: bool,
+    /// The complementary basis on the segment: for each pair, `W(i)` or `Z(i)`.
+    pub basis: Vec<Var>,
+    /// `z` at `lambda_from`.
+    pub z_from: Col<T>,
+    /// `dz/dL`.
+    pub dz: Col<T>,
+    /// `w` at `lambda_from`.
+    pub w_from: Col<T>,
+    /// `dw/dL`.
+    pub dw: Col<T>,
+    /// `u` at `lambda_from` (mixed form; empty otherwise).
+    pub u_from: Col<T>,
+    /// `du/dL`.
+    pub du: Col<T>,
+}
+
+fn affine<T: Scalar>(from: &Col<T>, slope: &Col<T>, dl: T) -> Col<T> {
+    Col::from_fn(from.nrows(), |i| from[i] + slope[i] * dl)
+}
+
+impl<T: Scalar> Segment<T> {
+    /// True if `lambda` lies in the segment's range (either order of its ends).
+    pub fn contains(&self, lambda: T) -> bool {
+        let (lo, hi) = if self.lambda_from <= self.lambda_to {
+            (self.lambda_from, self.lambda_to)
+        } else {
+            (self.lambda_to, self.lambda_from)
+        };
+        lambda >= lo && (self.unbounded || lambda <= hi)
+    }
+    /// The solution on this segment at `lambda` (extrapolated if outside).
+    pub fn eval(&self, lambda: T) -> Point<T> {
+        let dl = lambda - self.lambda_from;
+        Point {
+            lambda,
+            z: affine(&self.z_from, &self.dz, dl),
+            w: affine(&self.w_from, &self.dw, dl),
+            u: affine(&self.u_from, &self.du, dl),
+        }
+    }
+    /// Base of `z` at `L = 0`: `z(L) = z0 + L dz`.
+    pub fn z0(&self) -> Col<T> {
+        affine(&self.z_from, &self.dz, -self.lambda_from)
+    }
+    /// Base of `w` at `L = 0`.
+    pub fn w0(&self) -> Col<T> {
+        affine(&self.w_from, &self.dw, -self.lambda_from)
+    }
+    /// Base of `u` at `L = 0`.
+    pub fn u0(&self) -> Col<T> {
+        affine(&self.u_from, &self.du, -self.lambda_from)
+    }
+}
+
+/// The solution at one parameter value.
+#[derive(Clone, Debug)]
+pub struct Point<T: Scalar> {
+    /// The parameter.
+    pub lambda: T,
+    /// Complementary variables.
+    pub z: Col<T>,
+    /// Slacks.
+    pub w: Col<T>,
+    /// Free variables (empty in standard form).
+    pub u: Col<T>,
+}
+
+/// Largest residuals seen, relative to the data's scale (see [`crate::tolerance`]).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Residual {
+    /// `max |M x + q + L d - (0, w)|` over the rows, divided by the scale of the row data.
+    pub equation: f64,
+    /// `max(0, -min(z, w))`, relative.
+    pub feasibility: f64,
+    /// `max_i |z_i w_i|`, relative.
+    pub complementarity: f64,
+}
+
+impl Residual {
+    /// Element-wise maximum.
+    pub fn max(self, other: Residual) -> Residual {
+        Residual {
+            equation: self.equation.max(other.equation),
+            feasibility: self.feasibility.max(other.feasibility),
+            complementarity: self.complementarity.max(other.complementarity),
+        }
+    }
+    /// The largest of the three.
+    pub fn worst(&self) -> f64 {
+        self.equation.max(self.feasibility).max(self.complementarity)
+    }
+}
+
+/// What the free variables of a mixed problem look like (Wolfe long form).
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct FreeBlockInfo {
+    /// Numerical rank of the free block.
+    pub rank: usize,
+    /// Free variables that could not be made basic at the start (held at zero:
+    /// their values are not unique, e.g. redundant member forces).
+    pub nonbasic_free: Vec<usize>,
+    /// Equality rows dependent on the others at the start (compatibility conditions).
+    pub dependent_rows: Vec<usize>,
+}
+
+/// How the path was computed and how well it is known.
+#[derive(Clone, Debug, Default)]
+pub struct Info {
+    /// Which method ran.
+    pub method: &'static str,
+    /// Precision name (`f32`, `f64`, `f128`).
+    pub precision: &'static str,
+    /// Pivots in all phases.
+    pub pivots: usize,
+    /// Pivots of the start phase (Lemke with an artificial variable at `lambda0`).
+    pub start_pivots: usize,
+    /// Pivots after a zero-length step.
+    pub degenerate_pivots: usize,
+    /// Basis refactorisations.
+    pub refactorisations: usize,
+    /// Points where `L` started to decrease along the path.
+    pub turning_points: usize,
+    /// Largest residuals at any breakpoint (and at the end).
+    pub residual: Residual,
+    /// Largest estimated condition number of a basis (1-norm, at refactorisations).
+    pub max_condition: f64,
+    /// The free block (mixed form).
+    pub free_block: FreeBlockInfo,
+    /// Wall-clock seconds of the solve alone.
+    pub solve_seconds: f64,
+}
+
+/// A secondary or unbounded ray: the last point plus `t` times a direction, `t >= 0`.
+#[derive(Clone, Debug)]
+pub struct Ray<T: Scalar> {
+    /// The point where the ray starts.
+    pub start: Point<T>,
+    /// Direction in `z`.
+    pub dz: Col<T>,
+    /// Direction in `w`.
+    pub dw: Col<T>,
+    /// Direction in `u`.
+    pub du: Col<T>,
+    /// Direction in `L`.
+    pub dlambda: T,
+}
+
+/// The solution path of a PLCP.
+#[derive(Clone, Debug)]
+pub struct Path<T: Scalar> {
+    /// How the path ended.
+    pub status: Status,
+    /// Start value of the parameter.
+    pub lambda0: T,
+    /// Requested end (`None`: infinity).
+    pub lambda_max: Option<T>,
+    /// The parameter value the path reached.
+    pub lambda_reached: T,
+    /// Breakpoints in path order.
+    pub breakpoints: Vec<Breakpoint<T>>,
+    /// Segments in path order (zero-length steps are breakpoints, not segments).
+    pub segments: Vec<Segment<T>>,
+    /// The solution where the path ended.
+    pub end: Point<T>,
+    /// The ray the path ended on, for `SecondaryRay` and `UnboundedRay`.
+    pub ray: Option<Ray<T>>,
+    /// Diagnostics and the evidence behind a status other than success.
+    pub message: String,
+    /// Counts, residuals, timing.
+    pub info: Info,
+}
+
+impl<T: Scalar> Path<T> {
+    /// The solution at `lambda`, from the first segment (in path order) whose range
+    /// holds it. `None` outside the traced range. On a path with turning points
+    /// (possible only for non-monotone problems) several solutions may exist.
+    pub fn at(&self, lambda: T) -> Option<Point<T>> {
+        if let Some(seg) = self.segments.iter().find(|s| s.contains(lambda)) {
+            return Some(seg.eval(lambda));
+        }
+        if self.segments.is_empty() && lambda == self.end.lambda {
+            return Some(self.end.clone());
+        }
+        None
+    }
+    /// The segment index holding `lambda`, if any.
+    pub fn segment_at(&self, lambda: T) -> Option<usize> {
+        self.segments.iter().position(|s| s.contains(lambda))
+    }
+}

@@ -1,0 +1,233 @@
+//! The problem: a parametric LCP in standard or mixed form, checked at construction.
+
+use crate::error::PlcpError;
+use crate::scalar::Scalar;
+use faer::{Col, ColRef, Mat, MatRef};
+
+/// A parametric linear complementarity problem.
+///
+/// With `x = (u, z)`, `u` the `p` free variables and `z` the `n` complementary ones,
+/// and `L` the parameter rising from `lambda0` to `lambda_max`:
+///
+/// ```text
+/// 0 = (M x + q + L d)[0..p]                 (p equality rows)
+/// w = (M x + q + L d)[p..p+n],  w >= 0,  z >= 0,  w'z = 0.
+/// ```
+///
+/// The standard form is `p = 0`.
+///
+/// ```
+/// use faer::{mat, col};
+/// let m = mat![[2.0, 1.0], [1.0, 2.0]];
+/// let q = col![1.0, 1.0];
+/// let d = col![-1.0, -0.5];
+/// let problem = plcp::Plcp::new(m.as_ref(), q.as_ref(), d.as_ref()).unwrap();
+/// assert_eq!(problem.n(), 2);
+/// ```
+#[derive(Clone, Debug)]
+pub struct Plcp<T: Scalar> {
+    m: Mat<T>,
+    q: Col<T>,
+    d: Col<T>,
+    free: usize,
+    lambda0: T,
+    lambda_max: Option<T>,
+}
+
+fn check_finite_mat<T: Scalar>(what: &str, a: MatRef<'_, T>) -> Result<(), PlcpError> {
+    for j in 0..a.ncols() {
+        for i in 0..a.nrows() {
+            let v = a[(i, j)];
+            if !v.is_finite() {
+                return Err(PlcpError::NonFinite {
+                    what: what.into(),
+                    position: format!("({i}, {j})"),
+                    value: v.to_f64(),
+                });
+            }
+        }
+    }
+    Ok(())
+}
+
+fn check_finite_col<T: Scalar>(what: &str, a: ColRef<'_, T>) -> Result<(), PlcpError> {
+    for i in 0..a.nrows() {
+        let v = a[i];
+        if !v.is_finite() {
+            return Err(PlcpError::NonFinite {
+                what: what.into(),
+                position: format!("[{i}]"),
+                value: v.to_f64(),
+            });
+        }
+    }
+    Ok(())
+}
+
+impl<T: Scalar> Plcp<T> {
+    /// A standard-form PLCP `w = q + L d + M z` (no free variables).
+    pub fn new(m: MatRef<'_, T>, q: ColRef<'_, T>, d: ColRef<'_, T>) -> Result<Self, PlcpError> {
+        Self::mixed(m, q, d, 0)
+    }
+
+    /// A mixed PLCP whose first `free` unknowns are free and first `free` rows equalities.
+    pub fn mixed(
+        m: MatRef<'_, T>,
+        q: ColRef<'_, T>,
+        d: ColRef<'_, T>,
+        free: usize,
+    ) -> Result<Self, PlcpError> {
+        let dim = m.nrows();
+        if m.ncols() != dim {
+            return Err(PlcpError::Dimension {
+                what: "M".into(),
+                expected: format!("a square matrix ({dim} x {dim})"),
+                found: format!("{} x {}", m.nrows(), m.ncols()),
+            });
+        }
+        if q.nrows() != dim {
+            return Err(PlcpError::Dimension {
+                what: "q".into(),
+                expected: format!("{dim} entries (the order of M)"),
+                found: format!("{} entries", q.nrows()),
+            });
+        }
+        if d.nrows() != dim {
+            return Err(PlcpError::Dimension {
+                what: "d".into(),
+                expected: format!("{dim} entries (the order of M)"),
+                found: format!("{} entries", d.nrows()),
+            });
+        }
+        if free > dim {
+            return Err(PlcpError::Invalid {
+                what: "free".into(),
+                why: format!("{free} free variables but M has order {dim}"),
+            });
+        }
+        check_finite_mat("M", m)?;
+        check_finite_col("q", q)?;
+        check_finite_col("d", d)?;
+        Ok(Self {
+            m: m.to_owned(),
+            q: q.to_owned(),
+            d: d.to_owned(),
+            free,
+            lambda0: T::zero(),
+            lambda_max: None,
+        })
+    }
+
+    /// Sets the parameter range: from `lambda0` up to `lambda_max` (`None`: infinity).
+    pub fn with_range(mut self, lambda0: T, lambda_max: Option<T>) -> Result<Self, PlcpError> {
+        if !lambda0.is_finite() {
+            return Err(PlcpError::Invalid {
+                what: "lambda0".into(),
+                why: format!("must be finite, got {}", lambda0.to_f64()),
+            });
+        }
+        if let Some(lm) = lambda_max {
+            if lm.to_f64().is_nan() || (lm.to_f64().is_infinite() && lm.to_f64() < 0.0) {
+                return Err(PlcpError::Invalid {
+                    what: "lambda_max".into(),
+                    why: format!("must be a number >= lambda0, got {}", lm.to_f64()),
+                });
+            }
+            if lm < lambda0 {
+                return Err(PlcpError::Invalid {
+                    what: "lambda_max".into(),
+                    why: format!(
+                        "lambda_max = {} is below lambda0 = {}",
+                        lm.to_f64(),
+                        lambda0.to_f64()
+                    ),
+                });
+            }
+        }
+        self.lambda0 = lambda0;
+        self.lambda_max = lambda_max.filter(|l| l.is_finite());
+        Ok(self)
+    }
+
+    /// Number of complementary pairs `n`.
+    pub fn n(&self) -> usize {
+        self.m.nrows() - self.free
+    }
+    /// Number of free variables `p`.
+    pub fn free(&self) -> usize {
+        self.free
+    }
+    /// Order of `M`, `p + n`.
+    pub fn dim(&self) -> usize {
+        self.m.nrows()
+    }
+    /// The matrix `M`.
+    pub fn m(&self) -> MatRef<'_, T> {
+        self.m.as_ref()
+    }
+    /// The constant vector `q`.
+    pub fn q(&self) -> ColRef<'_, T> {
+        self.q.as_ref()
+    }
+    /// The parameter direction `d`.
+    pub fn d(&self) -> ColRef<'_, T> {
+        self.d.as_ref()
+    }
+    /// Start value of the parameter.
+    pub fn lambda0(&self) -> T {
+        self.lambda0
+    }
+    /// End value of the parameter (`None`: infinity).
+    pub fn lambda_max(&self) -> Option<T> {
+        self.lambda_max
+    }
+
+    /// Converts the data to another precision (through `f64`).
+    pub fn cast<U: Scalar>(&self) -> Plcp<U> {
+        let dim = self.dim();
+        Plcp {
+            m: Mat::from_fn(dim, dim, |i, j| U::from_f64(self.m[(i, j)].to_f64())),
+            q: Col::from_fn(dim, |i| U::from_f64(self.q[i].to_f64())),
+            d: Col::from_fn(dim, |i| U::from_f64(self.d[i].to_f64())),
+            free: self.free,
+            lambda0: U::from_f64(self.lambda0.to_f64()),
+            lambda_max: self.lambda_max.map(|l| U::from_f64(l.to_f64())),
+        }
+    }
+}
+
+/// A plain LCP: `w = q + M z`, `w, z >= 0`, `w'z = 0`.
+#[derive(Clone, Debug)]
+pub struct Lcp<T: Scalar> {
+    pub(crate) m: Mat<T>,
+    pub(crate) q: Col<T>,
+}
+
+impl<T: Scalar> Lcp<T> {
+    /// Checks dimensions and finiteness.
+    pub fn new(m: MatRef<'_, T>, q: ColRef<'_, T>) -> Result<Self, PlcpError> {
+        let zero = Col::<T>::zeros(q.nrows());
+        let p = Plcp::new(m, q, zero.as_ref())?;
+        Ok(Self { m: p.m, q: p.q })
+    }
+    /// Order of the problem.
+    pub fn n(&self) -> usize {
+        self.q.nrows()
+    }
+    /// The matrix.
+    pub fn m(&self) -> MatRef<'_, T> {
+        self.m.as_ref()
+    }
+    /// The vector.
+    pub fn q(&self) -> ColRef<'_, T> {
+        self.q.as_ref()
+    }
+    /// Converts the data to another precision (through `f64`).
+    pub fn cast<U: Scalar>(&self) -> Lcp<U> {
+        let n = self.n();
+        Lcp {
+            m: Mat::from_fn(n, n, |i, j| U::from_f64(self.m[(i, j)].to_f64())),
+            q: Col::from_fn(n, |i| U::from_f64(self.q[i].to_f64())),
+        }
+    }
+}

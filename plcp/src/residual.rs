@@ -1,0 +1,56 @@
+//! Residuals of a point against a problem: equation, feasibility, complementarity.
+
+use crate::path::{Point, Residual};
+use crate::problem::Plcp;
+use crate::scalar::Scalar;
+
+/// The residuals of `point` for `problem`, each relative to the data's scale:
+///
+/// * equation: `max_r |(M x + q + L d)_r - (0 or w_r)| / s_r`, with
+///   `s_r = max(1, |q_r|, |L d_r|, max_j |M_rj x_j|)`;
+/// * feasibility: `max(0, -min_i z_i / sz, -min_i w_i / sw)`, `sz = max(1, max |z|)`,
+///   `sw = max(1, max |w|)`;
+/// * complementarity: `max_i |z_i w_i| / (sz sw)`.
+pub fn residual<T: Scalar>(problem: &Plcp<T>, point: &Point<T>) -> Residual {
+    let p = problem.free();
+    let n = problem.n();
+    let m = problem.m();
+    let q = problem.q();
+    let d = problem.d();
+    let l = point.lambda.to_f64();
+    let x: Vec<f64> = (0..p)
+        .map(|j| point.u[j].to_f64())
+        .chain((0..n).map(|i| point.z[i].to_f64()))
+        .collect();
+    let mut eq = 0.0f64;
+    for r in 0..p + n {
+        // sum in the working precision, scale in f64
+        let mut acc = q[r] + point.lambda * d[r];
+        let mut scale = 1.0f64.max(q[r].to_f64().abs()).max((l * d[r].to_f64()).abs());
+        for j in 0..p + n {
+            let xj = if j < p { point.u[j] } else { point.z[j - p] };
+            acc = acc + m[(r, j)] * xj;
+            scale = scale.max((m[(r, j)].to_f64() * x[j]).abs());
+        }
+        if r >= p {
+            acc = acc - point.w[r - p];
+            scale = scale.max(point.w[r - p].to_f64().abs());
+        }
+        eq = eq.max(acc.to_f64().abs() / scale);
+    }
+    let sz = (0..n).fold(1.0f64, |a, i| a.max(point.z[i].to_f64().abs()));
+    let sw = (0..n).fold(1.0f64, |a, i| a.max(point.w[i].to_f64().abs()));
+    let mut feas = 0.0f64;
+    let mut comp = 0.0f64;
+    for i in 0..n {
+        let zi = point.z[i].to_f64();
+        let wi = point.w[i].to_f64();
+        feas = feas.max(-zi / sz).max(-wi / sw);
+        comp = comp.max((zi * wi).abs() / (sz * sw));
+    }
+    Residual {
+        equation: eq,
+        feasibility: feas.max(0.0),
+        complementarity: comp,
+    }
+}

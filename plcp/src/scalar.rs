@@ -1,0 +1,153 @@
+//! The scalar trait: one bound that covers `f32`, `f64` and faer's double-double `fx128`.
+//!
+//! `fx128` has neither `num_traits::Float` nor `Display`, so the bound is built on
+//! [`faer::traits::RealField`] and adds only what all three types have.
+
+use faer::traits::math_utils;
+use faer::traits::RealField;
+
+/// A real floating-point type the solvers run in: `f32`, `f64` or [`faer::fx128`].
+pub trait Scalar:
+    RealField + Copy + Send + Sync + core::ops::Neg<Output = Self> + 'static
+{
+    /// A short name: `"f32"`, `"f64"`, `"f128"`.
+    const NAME: &'static str;
+
+    /// Converts to `f64` (rounding for `fx128`).
+    fn to_f64(self) -> f64;
+
+    /// Converts from `f64` (exact for `f64` and `fx128`, rounded for `f32`).
+    #[inline]
+    fn from_f64(x: f64) -> Self {
+        math_utils::from_f64::<Self>(x)
+    }
+
+    /// Machine epsilon of the type.
+    #[inline]
+    fn eps() -> Self {
+        math_utils::eps::<Self>()
+    }
+
+    /// Absolute value.
+    #[inline]
+    fn abs(self) -> Self {
+        math_utils::abs(&self)
+    }
+
+    /// Square root.
+    #[inline]
+    fn sqrt(self) -> Self {
+        math_utils::sqrt(&self)
+    }
+
+    /// True unless NaN or infinite.
+    #[inline]
+    fn is_finite(self) -> bool {
+        math_utils::is_finite(&self)
+    }
+
+    /// The larger of two values.
+    #[inline]
+    fn max(self, other: Self) -> Self {
+        if self >= other {
+            self
+        } else {
+            other
+        }
+    }
+
+    /// The smaller of two values.
+    #[inline]
+    fn min(self, other: Self) -> Self {
+        if self <= other {
+            self
+        } else {
+            other
+        }
+    }
+
+    /// The largest finite value of the type.
+    #[inline]
+    fn max_value() -> Self {
+        math_utils::max_positive::<Self>()
+    }
+}
+
+impl Scalar for f32 {
+    const NAME: &'static str = "f32";
+    #[inline]
+    fn to_f64(self) -> f64 {
+        self as f64
+    }
+    #[inline]
+    fn from_f64(x: f64) -> Self {
+        x as f32
+    }
+}
+
+impl Scalar for f64 {
+    const NAME: &'static str = "f64";
+    #[inline]
+    fn to_f64(self) -> f64 {
+        self
+    }
+    #[inline]
+    fn from_f64(x: f64) -> Self {
+        x
+    }
+}
+
+impl Scalar for faer::fx128 {
+    const NAME: &'static str = "f128";
+    #[inline]
+    fn to_f64(self) -> f64 {
+        self.0 + self.1
+    }
+}
+
+/// The precision a caller asks for at run time (command line, settings files).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum Precision {
+    /// Single precision.
+    F32,
+    /// Double precision (the default).
+    #[default]
+    F64,
+    /// Double-double (`faer::fx128`, about 32 significant digits).
+    F128,
+}
+
+impl core::str::FromStr for Precision {
+    type Err = String;
+    fn from_str(s: &str) -> Result<Self, String> {
+        match s {
+            "f32" => Ok(Self::F32),
+            "f64" => Ok(Self::F64),
+            "f128" | "fx128" => Ok(Self::F128),
+            other => Err(format!(
+                "unknown precision '{other}': expected f32, f64 or f128"
+            )),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn roundtrip<T: Scalar>() {
+        let x = T::from_f64(1.5);
+        assert_eq!(x.to_f64(), 1.5);
+        assert!(T::eps() > T::zero());
+        assert_eq!((-x).abs().to_f64(), 1.5);
+        assert!(T::from_f64(f64::NAN).is_finite() == false);
+    }
+
+    #[test]
+    fn all_three_types() {
+        roundtrip::<f32>();
+        roundtrip::<f64>();
+        roundtrip::<faer::fx128>();
+        assert!(faer::fx128::eps().to_f64() < 1e-30);
+    }
+}

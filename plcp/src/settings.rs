@@ -1,0 +1,126 @@
+//! Settings of the solvers, with documented defaults and a `validate()`.
+
+use crate::error::PlcpError;
+use crate::scalar::Scalar;
+use faer::Col;
+
+/// The algorithm that traces the path.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum Method {
+    /// Lemke-style complementary pivoting with `L` as the driving variable, on the
+    /// standard form (a mixed problem is first reduced by a Schur complement,
+    /// which needs a nonsingular free block).
+    #[default]
+    Lemke,
+    /// Wolfe's simplex method for QP in its long form, on the unreduced tableau of
+    /// the mixed system (free variables basic as far as the rank allows,
+    /// dependent equality rows kept with artificial variables fixed at zero).
+    Wolfe,
+}
+
+impl core::str::FromStr for Method {
+    type Err = String;
+    fn from_str(s: &str) -> Result<Self, String> {
+        match s {
+            "lemke" => Ok(Self::Lemke),
+            "wolfe" => Ok(Self::Wolfe),
+            other => Err(format!("unknown method '{other}': expected lemke or wolfe")),
+        }
+    }
+}
+
+/// Settings. Every tolerance is relative; see [`crate::tolerance`] for how each
+/// is scaled.
+#[derive(Clone, Debug)]
+pub struct Settings<T: Scalar> {
+    /// The algorithm. Default: [`Method::Lemke`].
+    pub method: Method,
+    /// Covering vector of the start phase (Lemke's artificial variable), one
+    /// positive entry per complementary pair. Default `None`: all ones.
+    pub covering: Option<Col<T>>,
+    /// Largest number of pivots in all phases. Default `None`: `50 * (n + p) + 1000`.
+    pub max_pivots: Option<usize>,
+    /// Pivot tolerance, as a multiple of the working precision's epsilon: an entry
+    /// of the entering column counts only if `|a| > pivot_tol_eps * eps * scale`.
+    /// Default `1e4` (f64: about 2e-12 relative).
+    pub pivot_tol_eps: f64,
+    /// Ratios within `tie_tol_eps * eps` (relative) count as ties and go to the
+    /// lexicographic rule. Default `1e3`.
+    pub tie_tol_eps: f64,
+    /// Refactorise the basis every this many pivots. Default `50`.
+    pub refactor_period: usize,
+    /// A basis whose estimated 1-norm condition number times epsilon exceeds this
+    /// stops the path with `IllConditioned`. Default `1e-2`.
+    pub max_cond_eps: f64,
+}
+
+impl<T: Scalar> Default for Settings<T> {
+    fn default() -> Self {
+        Self {
+            method: Method::Lemke,
+            covering: None,
+            max_pivots: None,
+            pivot_tol_eps: 1e4,
+            tie_tol_eps: 1e3,
+            refactor_period: 50,
+            max_cond_eps: 1e-2,
+        }
+    }
+}
+
+impl<T: Scalar> Settings<T> {
+    /// Settings with the given method and defaults otherwise.
+    pub fn with_method(method: Method) -> Self {
+        Self {
+            method,
+            ..Self::default()
+        }
+    }
+
+    /// Checks every setting; `n` is the number of complementary pairs.
+    pub fn validate(&self, n: usize) -> Result<(), PlcpError> {
+        if let Some(c) = &self.covering {
+            if c.nrows() != n {
+                return Err(PlcpError::Dimension {
+                    what: "covering vector".into(),
+                    expected: format!("{n} entries (one per complementary pair)"),
+                    found: format!("{} entries", c.nrows()),
+                });
+            }
+            for i in 0..n {
+                if !(c[i].is_finite() && c[i] > T::zero()) {
+                    return Err(PlcpError::Invalid {
+                        what: "covering vector".into(),
+                        why: format!("entry [{i}] = {} is not positive and finite", c[i].to_f64()),
+                    });
+                }
+            }
+        }
+        let pos = |what: &str, v: f64| -> Result<(), PlcpError> {
+            if v.is_finite() && v > 0.0 {
+                Ok(())
+            } else {
+                Err(PlcpError::Invalid {
+                    what: what.into(),
+                    why: format!("must be positive and finite, got {v}"),
+                })
+            }
+        };
+        pos("pivot_tol_eps", self.pivot_tol_eps)?;
+        pos("tie_tol_eps", self.tie_tol_eps)?;
+        pos("max_cond_eps", self.max_cond_eps)?;
+        if self.refactor_period == 0 {
+            return Err(PlcpError::Invalid {
+                what: "refactor_period".into(),
+                why: "must be at least 1".into(),
+            });
+        }
+        if self.max_pivots == Some(0) {
+            return Err(PlcpError::Invalid {
+                what: "max_pivots".into(),
+                why: "must be at least 1".into(),
+            });
+        }
+        Ok(())
+    }
+}

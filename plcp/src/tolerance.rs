@@ -1,0 +1,28 @@
+//! Every tolerance of the crate, in one place, and how each is scaled.
+//!
+//! All tolerances are relative to the data and to the working precision
+//! (`eps` = machine epsilon of the scalar type: about 1.2e-7 for `f32`,
+//! 2.2e-16 for `f64`, 4.9e-32 for `fx128`).
+//!
+//! | name | where | value |
+//! |---|---|---|
+//! | pivot tolerance | an entry `a_i` of the entering column may be a pivot | `abs(a_i) > pivot_tol_eps * eps * max_k abs(a_k)` (default `pivot_tol_eps = 1e4`) |
+//! | tie tolerance | two ratios `t_i`, `t_j` of the minimum-ratio test are tied (and go to the lexicographic rule) | `abs(t_i - t_j) <= tie_tol_eps * eps * max(1, abs(t_min), scale)` (default `tie_tol_eps = 1e3`) |
+//! | lexicographic tie | two scaled rows of the basis inverse are equal in an entry | same tie tolerance, relative to the largest entry compared |
+//! | zero step | a step is degenerate (zero length) | ratio `<= tie tolerance` |
+//! | rank of the free block | a pivot of the full-pivoting LU counts | `abs(u_kk) > sqrt(eps) * max abs(u_11)`... see [`rank_tol`] |
+//! | condition | a basis is ill-conditioned | `cond_1(B) * eps > max_cond_eps` (default `1e-2`) |
+//! | residuals | reported, not thresholds | relative to `max(1, max abs(q), abs(L) max abs(d), max abs(M) max abs(x))` per row |
+
+use crate::scalar::Scalar;
+
+/// The rank tolerance of the full-pivoting LU of a free block: `dim * eps * 1e2`
+/// times the largest pivot. Pivots below it count as zero.
+pub fn rank_tol<T: Scalar>(dim: usize, largest_pivot: T) -> T {
+    T::from_f64(100.0 * (dim.max(1) as f64)) * T::eps() * largest_pivot
+}
+
+/// `k * eps` in the working precision.
+pub fn eps_times<T: Scalar>(k: f64) -> T {
+    T::from_f64(k) * T::eps()
+}

@@ -1,0 +1,1 @@
+//! Integration crate: see examples/, tests/ and benches/.
