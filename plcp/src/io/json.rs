@@ -1,0 +1,630 @@
+//! plcp's JSON formats: the problem file read by `plcp solve`, and the output
+//! written by `plcp solve` and `plcp lcp`.
+//!
+//! # Input
+//!
+//! ```json
+//! {"M": [[2, 1], [1, 2]], "q": [1, 1], "d": [-1, -0.5], "lambda_max": null, "free": 0, "lambda0": 0}
+//! ```
+//!
+//! * `M`: the matrix as a list of rows (row-major), square, of order `p + n`;
+//! * `q`, `d`: vectors of that length;
+//! * `lambda_max`: a number, or `null`, absent or the string `"inf"` for infinity;
+//! * `free`: the number `p` of free variables (the first `p` unknowns and
+//!   rows), default 0;
+//! * `lambda0`: the start value of the parameter, default 0.
+//!
+//! Entries may also be written as strings that name a number (`"NaN"`, `"inf"`,
+//! `"1e-3"`); non-finite entries are then rejected by name (`q[2]`, `M(1, 3)`).
+//! Unknown keys are ignored. Syntax errors give the file, line and column.
+//!
+//! ```
+//! let text = r#"{"M": [[2, 1], [1, 2]], "q": [1, 1], "d": [-1, -0.5]}"#;
+//! let p = plcp::io::json::parse_plcp::<f64>(text.as_bytes(), "ex.json").unwrap();
+//! assert_eq!((p.n(), p.free(), p.lambda_max()), (2, 0, None));
+//! let bad = r#"{"M": [[2, 1], [1]], "q": [1, 1], "d": [-1, -0.5]}"#;
+//! let e = plcp::io::json::parse_plcp::<f64>(bad.as_bytes(), "ex.json").unwrap_err();
+//! assert!(e.to_string().contains("row 1 with 1 entries"));
+//! ```
+//!
+//! # Output
+//!
+//! One JSON object (see [`path_json`] and [`lcp_json`] for the keys). Numbers
+//! are written through `f64` (an `fx128` value is rounded to the nearest
+//! `f64`). **A number that is not finite (NaN, an infinity) is written as
+//! `null`**, so the output is always valid JSON: `lambda_to` of an unbounded
+//! last segment and `lambda_max` when infinite are `null` by design.
+
+use super::{check_order, convert, read_bytes};
+use crate::error::PlcpError;
+use crate::lemke::LcpSolution;
+use crate::path::{Path, Point, Residual, Status};
+use crate::problem::{Lcp, Plcp};
+use crate::residual::residual;
+use crate::scalar::Scalar;
+use faer::{Col, Mat};
+use serde::{Deserialize, Serialize};
+
+// ---------------------------------------------------------------- input
+
+/// A number as written in the file: a JSON number, or a string naming one.
+#[derive(Clone, Copy, Debug)]
+struct Num(f64);
+
+impl<'de> Deserialize<'de> for Num {
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        struct V;
+        impl serde::de::Visitor<'_> for V {
+            type Value = Num;
+            fn expecting(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+                f.write_str("a number")
+            }
+            fn visit_f64<E: serde::de::Error>(self, v: f64) -> Result<Num, E> {
+                Ok(Num(v))
+            }
+            fn visit_i64<E: serde::de::Error>(self, v: i64) -> Result<Num, E> {
+                Ok(Num(v as f64))
+            }
+            fn visit_u64<E: serde::de::Error>(self, v: u64) -> Result<Num, E> {
+                Ok(Num(v as f64))
+            }
+            fn visit_str<E: serde::de::Error>(self, v: &str) -> Result<Num, E> {
+                v.trim()
+                    .parse::<f64>()
+                    .map(Num)
+                    .map_err(|_| E::invalid_value(serde::de::Unexpected::Str(v), &"a number"))
+            }
+        }
+        d.deserialize_any(V)
+    }
+}
+
+#[derive(Deserialize)]
+struct RawPlcp {
+    #[serde(rename = "M", alias = "m")]
+    m: Vec<Vec<Num>>,
+    q: Vec<Num>,
+    d: Vec<Num>,
+    #[serde(default)]
+    lambda_max: Option<Num>,
+    #[serde(default)]
+    free: usize,
+    #[serde(default)]
+    lambda0: Option<Num>,
+}
+
+fn parse_error(file: &str, e: serde_json::Error) -> PlcpError {
+    let full = e.to_string();
+    let suffix = format!(" at line {} column {}", e.line(), e.column());
+    let message = full.strip_suffix(&suffix).unwrap_or(&full).to_string();
+    PlcpError::Parse {
+        file: file.to_string(),
+        line: e.line().max(1),
+        column: e.column().max(1),
+        message,
+    }
+}
+
+/// Parses a problem file's bytes (see the [module docs](self)); `file` is the
+/// name used in error messages. Values are read as `f64` and converted to `T`.
+pub fn parse_plcp<T: Scalar>(bytes: &[u8], file: &str) -> Result<Plcp<T>, PlcpError> {
+    let raw: RawPlcp = serde_json::from_slice(bytes).map_err(|e| parse_error(file, e))?;
+    let dim = raw.m.len();
+    if dim == 0 {
+        return Err(PlcpError::Invalid {
+            what: "M".into(),
+            why: "M is empty (a problem of order 0)".into(),
+        });
+    }
+    let ncols = raw.m[0].len();
+    for (i, row) in raw.m.iter().enumerate() {
+        if row.len() != ncols {
+            return Err(PlcpError::Dimension {
+                what: "M".into(),
+                expected: format!("{ncols} entries in every row (as in row 0)"),
+                found: format!("row {i} with {} entries", row.len()),
+            });
+        }
+    }
+    if ncols != dim {
+        return Err(PlcpError::Dimension {
+            what: "M".into(),
+            expected: "a square matrix".into(),
+            found: format!("{dim} rows of {ncols} entries ({dim} x {ncols})"),
+        });
+    }
+    check_order("the order of M", dim).map_err(|why| PlcpError::Invalid {
+        what: "M".into(),
+        why,
+    })?;
+    for (what, v) in [("q", &raw.q), ("d", &raw.d)] {
+        if v.len() != dim {
+            return Err(PlcpError::Dimension {
+                what: what.into(),
+                expected: format!("{dim} entries (the order of M)"),
+                found: format!("{} entries", v.len()),
+            });
+        }
+    }
+    if raw.free > dim {
+        return Err(PlcpError::Invalid {
+            what: "free".into(),
+            why: format!("{} free variables but M has order {dim}", raw.free),
+        });
+    }
+    let mut m = Mat::<T>::zeros(dim, dim);
+    for (i, row) in raw.m.iter().enumerate() {
+        for (j, v) in row.iter().enumerate() {
+            m[(i, j)] = convert("M", &format!("({i}, {j})"), v.0)?;
+        }
+    }
+    let col = |what: &str, v: &[Num]| -> Result<Col<T>, PlcpError> {
+        let mut c = Col::<T>::zeros(v.len());
+        for (i, x) in v.iter().enumerate() {
+            c[i] = convert(what, &format!("[{i}]"), x.0)?;
+        }
+        Ok(c)
+    };
+    let q = col("q", &raw.q)?;
+    let d = col("d", &raw.d)?;
+    let lambda0 = match raw.lambda0 {
+        None => T::zero(),
+        Some(Num(v)) if v.is_finite() => convert("lambda0", "", v)?,
+        Some(Num(v)) => {
+            return Err(PlcpError::Invalid {
+                what: "lambda0".into(),
+                why: format!("must be a finite number, got {v}"),
+            })
+        }
+    };
+    let lambda_max = lambda_max_from_f64(raw.lambda_max.map(|n| n.0))?;
+    Plcp::mixed(m.as_ref(), q.as_ref(), d.as_ref(), raw.free)?.with_range(lambda0, lambda_max)
+}
+
+/// Converts a requested end of the parameter range: `None` or `+inf` is
+/// infinity, NaN and `-inf` are errors, a finite value must fit `T`.
+pub fn lambda_max_from_f64<T: Scalar>(v: Option<f64>) -> Result<Option<T>, PlcpError> {
+    match v {
+        None => Ok(None),
+        Some(v) if v == f64::INFINITY => Ok(None),
+        Some(v) if v.is_finite() => Ok(Some(convert("lambda_max", "", v)?)),
+        Some(v) => Err(PlcpError::Invalid {
+            what: "lambda_max".into(),
+            why: format!("must be a number or infinity, got {v}"),
+        }),
+    }
+}
+
+/// Reads a problem file (see the [module docs](self)).
+pub fn read_plcp<T: Scalar>(path: &std::path::Path) -> Result<Plcp<T>, PlcpError> {
+    let bytes = read_bytes(path)?;
+    parse_plcp(&bytes, &path.display().to_string())
+}
+
+// ---------------------------------------------------------------- output
+
+type Num64 = Option<f64>;
+
+fn num<T: Scalar>(x: T) -> Num64 {
+    f(x.to_f64())
+}
+
+fn f(v: f64) -> Num64 {
+    v.is_finite().then_some(v)
+}
+
+fn vec<T: Scalar>(c: &Col<T>) -> Vec<Num64> {
+    (0..c.nrows()).map(|i| num(c[i])).collect()
+}
+
+/// `Some(vec)` in the mixed form, `None` (key omitted) in the standard form.
+fn free_vec<T: Scalar>(free: usize, c: &Col<T>) -> Option<Vec<Num64>> {
+    (free > 0).then(|| vec(c))
+}
+
+#[derive(Serialize)]
+struct PointOut {
+    lambda: Num64,
+    z: Vec<Num64>,
+    w: Vec<Num64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    u: Option<Vec<Num64>>,
+}
+
+impl PointOut {
+    fn new<T: Scalar>(free: usize, p: &Point<T>) -> Self {
+        Self {
+            lambda: num(p.lambda),
+            z: vec(&p.z),
+            w: vec(&p.w),
+            u: free_vec(free, &p.u),
+        }
+    }
+}
+
+#[derive(Serialize)]
+struct AtOut {
+    lambda: Num64,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    z: Option<Vec<Num64>>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    w: Option<Vec<Num64>>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    u: Option<Vec<Num64>>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    residual: Option<ResidualOut>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    error: Option<String>,
+}
+
+#[derive(Serialize)]
+struct BreakpointOut {
+    lambda: Num64,
+    entering: String,
+    leaving: String,
+    degenerate: bool,
+    turning: bool,
+}
+
+#[derive(Serialize)]
+struct SegmentOut {
+    lambda_from: Num64,
+    lambda_to: Num64,
+    unbounded: bool,
+    basis: Vec<String>,
+    z0: Vec<Num64>,
+    dz: Vec<Num64>,
+    w0: Vec<Num64>,
+    dw: Vec<Num64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    u0: Option<Vec<Num64>>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    du: Option<Vec<Num64>>,
+}
+
+#[derive(Serialize, Clone, Copy)]
+struct ResidualOut {
+    equation: Num64,
+    feasibility: Num64,
+    complementarity: Num64,
+}
+
+impl From<Residual> for ResidualOut {
+    fn from(r: Residual) -> Self {
+        Self {
+            equation: f(r.equation),
+            feasibility: f(r.feasibility),
+            complementarity: f(r.complementarity),
+        }
+    }
+}
+
+#[derive(Serialize)]
+struct TimingOut {
+    solve_seconds: Num64,
+}
+
+#[derive(Serialize)]
+struct FreeBlockOut {
+    rank: usize,
+    nonbasic_free: Vec<usize>,
+    dependent_rows: Vec<usize>,
+}
+
+#[derive(Serialize)]
+struct InfoOut {
+    method: &'static str,
+    precision: &'static str,
+    pivots: usize,
+    start_pivots: usize,
+    degenerate_pivots: usize,
+    refactorisations: usize,
+    turning_points: usize,
+    max_condition: Num64,
+    free_block: FreeBlockOut,
+}
+
+impl InfoOut {
+    fn new<T: Scalar>(info: &crate::path::Info) -> Self {
+        Self {
+            method: info.method,
+            precision: if info.precision.is_empty() {
+                T::NAME
+            } else {
+                info.precision
+            },
+            pivots: info.pivots,
+            start_pivots: info.start_pivots,
+            degenerate_pivots: info.degenerate_pivots,
+            refactorisations: info.refactorisations,
+            turning_points: info.turning_points,
+            max_condition: f(info.max_condition),
+            free_block: FreeBlockOut {
+                rank: info.free_block.rank,
+                nonbasic_free: info.free_block.nonbasic_free.clone(),
+                dependent_rows: info.free_block.dependent_rows.clone(),
+            },
+        }
+    }
+}
+
+#[derive(Serialize)]
+struct RayOut {
+    start: PointOut,
+    dlambda: Num64,
+    dz: Vec<Num64>,
+    dw: Vec<Num64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    du: Option<Vec<Num64>>,
+}
+
+#[derive(Serialize)]
+struct PathOut {
+    status: &'static str,
+    n: usize,
+    free: usize,
+    lambda0: Num64,
+    lambda_max: Num64,
+    lambda_reached: Num64,
+    pivots: usize,
+    breakpoints: Vec<BreakpointOut>,
+    segments: Vec<SegmentOut>,
+    end: PointOut,
+    at: Vec<AtOut>,
+    residual: ResidualOut,
+    timing: TimingOut,
+    info: InfoOut,
+    message: String,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    ray: Option<RayOut>,
+}
+
+/// The JSON report of a solved path (one line, no trailing newline).
+///
+/// Keys, in order: `status` ([`Status::as_str`]), `n`, `free`, `lambda0`,
+/// `lambda_max` (`null`: infinity), `lambda_reached`, `pivots`, `breakpoints`
+/// (each `lambda`, `entering`, `leaving` (variable names `"z3"`, `"w3"`,
+/// `"u0"`, `"L"`, 0-based), `degenerate`, `turning`), `segments` (each
+/// `lambda_from`, `lambda_to` (`null` when unbounded), `unbounded`, `basis`
+/// (names), `z0`, `dz`, `w0`, `dw` and, when `free > 0`, `u0`, `du`: the
+/// solution on the segment is `z0 + L dz` etc.), `end` (`lambda`, `z`, `w`,
+/// and `u` when `free > 0`), `at` (one entry per value of `at`: `lambda`, `z`,
+/// `w`, (`u`), `residual`; or `lambda` and `error` when the value lies outside
+/// the traced range), `residual` (`equation`, `feasibility`, `complementarity`:
+/// the largest of the solver's own record over its breakpoints and a fresh
+/// evaluation at `end` and at every `at` point, each relative as in
+/// [`crate::residual::residual`]), `timing` (`solve_seconds`, as passed in),
+/// `info` (`method`, `precision`, `pivots`, `start_pivots`,
+/// `degenerate_pivots`, `refactorisations`, `turning_points`, `max_condition`,
+/// `free_block` {`rank`, `nonbasic_free`, `dependent_rows`}), `message`, and
+/// `ray` (`start` point, `dlambda`, `dz`, `dw`, (`du`)) when the path ended on one.
+/// Non-finite numbers are `null`.
+pub fn path_json<T: Scalar>(
+    problem: &Plcp<T>,
+    path: &Path<T>,
+    at: &[f64],
+    solve_seconds: f64,
+) -> String {
+    let p = problem.free();
+    let mut res = path.info.residual.max(residual(problem, &path.end));
+    let at: Vec<AtOut> = at
+        .iter()
+        .map(|&l| {
+            let point = if l.is_finite() {
+                path.at(T::from_f64(l))
+            } else {
+                None
+            };
+            match point {
+                Some(pt) => {
+                    let r = residual(problem, &pt);
+                    res = res.max(r);
+                    AtOut {
+                        lambda: f(l),
+                        z: Some(vec(&pt.z)),
+                        w: Some(vec(&pt.w)),
+                        u: free_vec(p, &pt.u),
+                        residual: Some(r.into()),
+                        error: None,
+                    }
+                }
+                None => AtOut {
+                    lambda: f(l),
+                    z: None,
+                    w: None,
+                    u: None,
+                    residual: None,
+                    error: Some(format!(
+                        "lambda = {l} lies outside the traced range [{}, {}] (status {})",
+                        path.lambda0.to_f64(),
+                        path.lambda_reached.to_f64(),
+                        path.status.as_str()
+                    )),
+                },
+            }
+        })
+        .collect();
+    let out = PathOut {
+        status: path.status.as_str(),
+        n: problem.n(),
+        free: p,
+        lambda0: num(path.lambda0),
+        lambda_max: path.lambda_max.and_then(num),
+        lambda_reached: num(path.lambda_reached),
+        pivots: path.info.pivots,
+        breakpoints: path
+            .breakpoints
+            .iter()
+            .map(|b| BreakpointOut {
+                lambda: num(b.lambda),
+                entering: b.entering.to_string(),
+                leaving: b.leaving.to_string(),
+                degenerate: b.degenerate,
+                turning: b.turning,
+            })
+            .collect(),
+        segments: path
+            .segments
+            .iter()
+            .map(|s| SegmentOut {
+                lambda_from: num(s.lambda_from),
+                lambda_to: if s.unbounded { None } else { num(s.lambda_to) },
+                unbounded: s.unbounded,
+                basis: s.basis.iter().map(|v| v.to_string()).collect(),
+                z0: vec(&s.z0()),
+                dz: vec(&s.dz),
+                w0: vec(&s.w0()),
+                dw: vec(&s.dw),
+                u0: free_vec(p, &s.u0()),
+                du: free_vec(p, &s.du),
+            })
+            .collect(),
+        end: PointOut::new(p, &path.end),
+        at,
+        residual: res.into(),
+        timing: TimingOut {
+            solve_seconds: f(solve_seconds),
+        },
+        info: InfoOut::new::<T>(&path.info),
+        message: path.message.clone(),
+        ray: path.ray.as_ref().map(|r| RayOut {
+            start: PointOut::new(p, &r.start),
+            dlambda: num(r.dlambda),
+            dz: vec(&r.dz),
+            dw: vec(&r.dw),
+            du: free_vec(p, &r.du),
+        }),
+    };
+    serde_json::to_string(&out).unwrap_or_else(|e| {
+        // Serialising these plain structs cannot fail; keep the output valid JSON anyway.
+        serde_json::json!({"status": "error", "message": e.to_string()}).to_string()
+    })
+}
+
+#[derive(Serialize)]
+struct LcpOut {
+    status: &'static str,
+    n: usize,
+    z: Vec<Num64>,
+    w: Vec<Num64>,
+    pivots: usize,
+    residual: ResidualOut,
+    siconos_error: Num64,
+    timing: TimingOut,
+    info: InfoOut,
+    message: String,
+}
+
+/// The name of an LCP outcome: `"solved"` for [`Status::Reached`] (and for an
+/// unbounded ray, which cannot end a plain LCP but would mean the same), else
+/// [`Status::as_str`].
+pub fn lcp_status(status: Status) -> &'static str {
+    if status.is_success() {
+        "solved"
+    } else {
+        status.as_str()
+    }
+}
+
+/// The JSON report of a plain LCP (one line): `status` ([`lcp_status`]), `n`,
+/// `z`, `w`, `pivots`, `residual` (as in [`path_json`]: the solver's record and
+/// a fresh evaluation of `(z, w)`), `siconos_error`
+/// ([`super::siconos::siconos_error`]), `timing` (`solve_seconds`), `info`,
+/// `message`. Non-finite numbers are `null`.
+pub fn lcp_json<T: Scalar>(lcp: &Lcp<T>, sol: &LcpSolution<T>, solve_seconds: f64) -> String {
+    let n = lcp.n();
+    let zero = Col::<T>::zeros(n);
+    let fresh = Plcp::new(lcp.m(), lcp.q(), zero.as_ref())
+        .map(|p| {
+            residual(
+                &p,
+                &Point {
+                    lambda: T::zero(),
+                    z: sol.z.clone(),
+                    w: sol.w.clone(),
+                    u: Col::zeros(0),
+                },
+            )
+        })
+        .unwrap_or_default();
+    let out = LcpOut {
+        status: lcp_status(sol.status),
+        n,
+        z: vec(&sol.z),
+        w: vec(&sol.w),
+        pivots: sol.info.pivots,
+        residual: sol.info.residual.max(fresh).into(),
+        siconos_error: f(super::siconos::siconos_error(
+            lcp.q(),
+            sol.z.as_ref(),
+            sol.w.as_ref(),
+        )),
+        timing: TimingOut {
+            solve_seconds: f(solve_seconds),
+        },
+        info: InfoOut::new::<T>(&sol.info),
+        message: sol.message.clone(),
+    };
+    serde_json::to_string(&out).unwrap_or_else(|e| {
+        serde_json::json!({"status": "error", "message": e.to_string()}).to_string()
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn err(text: &str) -> String {
+        parse_plcp::<f64>(text.as_bytes(), "p.json")
+            .unwrap_err()
+            .to_string()
+    }
+
+    #[test]
+    fn reads_all_keys() {
+        let p = parse_plcp::<f64>(
+            br#"{"M": [[1, 0, 0], [0, 2, 1], [0, 1, 2]], "q": [0, 1, "2"], "d": [1, -1, -1],
+                "lambda_max": 5.5, "free": 1, "lambda0": -1, "comment": "ignored"}"#,
+            "p.json",
+        )
+        .unwrap();
+        assert_eq!((p.dim(), p.n(), p.free()), (3, 2, 1));
+        assert_eq!(p.lambda_max(), Some(5.5));
+        assert_eq!(p.lambda0(), -1.0);
+        assert_eq!(p.m()[(1, 2)], 1.0);
+        assert_eq!(p.q()[2], 2.0);
+        for lm in ["null", "\"inf\"", "\"Infinity\""] {
+            let text = format!(r#"{{"M": [[1]], "q": [1], "d": [1], "lambda_max": {lm}}}"#);
+            let p = parse_plcp::<f32>(text.as_bytes(), "p.json").unwrap();
+            assert_eq!(p.lambda_max(), None, "{lm}");
+        }
+    }
+
+    #[test]
+    fn named_errors() {
+        let e = err(r#"{"M": [[1, 2], [3]], "q": [1, 1], "d": [1, 1]}"#);
+        assert!(e.contains("M") && e.contains("row 1 with 1 entries"), "{e}");
+        let e = err(r#"{"M": [[1, 2, 3], [3, 4, 5]], "q": [1, 1], "d": [1, 1]}"#);
+        assert!(e.contains("square") && e.contains("2 x 3"), "{e}");
+        let e = err(r#"{"M": [[1, 2], [3, 4]], "q": [1], "d": [1, 1]}"#);
+        assert!(e.contains("q has 1 entries"), "{e}");
+        let e = err(r#"{"M": [[1, 2], [3, 4]], "q": [1, "NaN"], "d": [1, 1]}"#);
+        assert!(e.contains("non-finite entry in q at [1]"), "{e}");
+        let e = err(r#"{"M": [[1, 2], [3, 4]], "q": [1, 1], "d": [1, 1], "free": 3}"#);
+        assert!(e.contains("free") && e.contains("order 2"), "{e}");
+        let e = err("{\"M\": [[1, 2],\n [3, 4]], \"q\": [1, 1], \"d\": [1, 1");
+        assert!(e.starts_with("p.json:2:"), "{e}");
+        let e = err(r#"{"M": [[1, 2], [3, 4]], "q": [1, 1]}"#);
+        assert!(e.contains("missing field `d`"), "{e}");
+        let e = err(r#"{"M": [[1, 2], [3, 4]], "q": [1, "x"], "d": [1, 1]}"#);
+        assert!(e.contains("p.json:1:") && e.contains("\"x\""), "{e}");
+        let e = err(r#"{"M": [[1, 2], [3, 4]], "q": [1, 1], "d": [1, 1], "lambda_max": "NaN"}"#);
+        assert!(e.contains("lambda_max"), "{e}");
+        let e = err(r#"{"M": [], "q": [], "d": []}"#);
+        assert!(e.contains("empty"), "{e}");
+        let e = parse_plcp::<f32>(br#"{"M": [[1e300]], "q": [1], "d": [1]}"#, "p.json")
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("overflows") && e.contains("f32"), "{e}");
+    }
+}
