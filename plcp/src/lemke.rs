@@ -1,11 +1,27 @@
 //! Lemke-style complementary pivoting with `L` as the driving variable.
-use crate::{error::PlcpError, path::*, problem::*, scalar::Scalar, settings::Settings};
+//!
+//! Standard form: from a complementary basis feasible at `L0` (all `w` when
+//! `q + L0 d >= 0`, else the end basis of Lemke's method with an artificial
+//! variable and a covering vector), `L` rises until a basic variable reaches zero.
+//! It leaves, `L` enters the basis in its place, and the leaving variable's
+//! complement drives the next step; along it `L` is basic and affine in the
+//! driver. When `L` would have to fall, it falls (a turning point, reported).
+//! Ties go to the lexicographic rule; see [`crate::tolerance`].
+//!
+//! A mixed problem is reduced by a Schur complement first ([`crate::reduce`]).
+
+use crate::path::{Info, Path, Point, Status, Var};
+use crate::pivoting::{run_path, start_phase, Engine};
+use crate::reduce::Reduction;
+use crate::residual::residual;
+use crate::{error::PlcpError, problem::*, scalar::Scalar, settings::Settings};
 use faer::Col;
 
 /// The answer to a plain LCP.
 #[derive(Clone, Debug)]
 pub struct LcpSolution<T: Scalar> {
-    /// `Reached` when solved; `SecondaryRay` when Lemke's method with the covering vector ended on a ray.
+    /// `Reached` when solved; `SecondaryRay` when Lemke's method with the
+    /// covering vector ended on a secondary ray; `PivotLimit`, `IllConditioned`.
     pub status: Status,
     /// The solution (the last point reached otherwise).
     pub z: Col<T>,
@@ -17,11 +33,146 @@ pub struct LcpSolution<T: Scalar> {
     pub info: Info,
 }
 
-pub(crate) fn solve<T: Scalar>(_p: &Plcp<T>, _s: &Settings<T>) -> Result<Path<T>, PlcpError> {
-    todo!()
+pub(crate) fn solve<T: Scalar>(
+    problem: &Plcp<T>,
+    settings: &Settings<T>,
+) -> Result<Path<T>, PlcpError> {
+    if problem.free() > 0 {
+        let timer = std::time::Instant::now();
+        let red = Reduction::new(problem)?;
+        let mut path = solve_standard(&red.reduced, settings, "lemke (Schur reduction)");
+        // recover u on every segment and at the end, and measure the residual on
+        // the original (unreduced) problem
+        let mut res = crate::path::Residual::default();
+        for seg in &mut path.segments {
+            seg.u_from = red.recover_u(&seg.z_from, seg.lambda_from);
+            seg.du = red.recover_du(&seg.dz);
+            res = res.max(residual(problem, &seg.eval(seg.lambda_from)));
+            if !seg.unbounded {
+                res = res.max(residual(problem, &seg.eval(seg.lambda_to)));
+            }
+        }
+        path.end.u = red.recover_u(&path.end.z, path.end.lambda);
+        if path.end.lambda.is_finite() {
+            res = res.max(residual(problem, &path.end));
+        }
+        if let Some(ray) = &mut path.ray {
+            ray.start.u = red.recover_u(&ray.start.z, ray.start.lambda);
+            let p = problem.free();
+            let n = problem.n();
+            // du per unit of the driver: -(G_z dz + G_d dL)
+            let du_dl = red.recover_du(&Col::zeros(n));
+            let dz_part = red.recover_du(&ray.dz);
+            ray.du = Col::from_fn(p, |i| (dz_part[i] - du_dl[i]) + du_dl[i] * ray.dlambda);
+        }
+        path.info.residual = res;
+        path.info.solve_seconds = timer.elapsed().as_secs_f64();
+        return Ok(path);
+    }
+    Ok(solve_standard(problem, settings, "lemke"))
 }
 
-/// Solves the LCP `w = q + M z`, `w, z >= 0`, `w'z = 0` by Lemke's method with a covering vector.
-pub fn solve_lcp<T: Scalar>(_lcp: &Lcp<T>, _s: &Settings<T>) -> Result<LcpSolution<T>, PlcpError> {
-    todo!()
+fn solve_standard<T: Scalar>(
+    problem: &Plcp<T>,
+    settings: &Settings<T>,
+    method: &'static str,
+) -> Path<T> {
+    let n = problem.n();
+    let start: Vec<Var> = (0..n).map(Var::W).collect();
+    run_path(
+        problem.m(),
+        0,
+        &problem.q().to_owned(),
+        &problem.d().to_owned(),
+        problem.lambda0(),
+        problem.lambda_max(),
+        start,
+        settings,
+        method,
+        Default::default(),
+    )
+}
+
+/// Solves the LCP `w = q + M z`, `w, z >= 0`, `w'z = 0` by Lemke's method with a
+/// covering vector (`settings.covering`, default all ones) and the lexicographic rule.
+///
+/// ```
+/// use faer::{mat, col};
+/// let lcp = plcp::Lcp::new(mat![[2.0, 1.0], [1.0, 2.0]].as_ref(), col![-5.0, -6.0].as_ref()).unwrap();
+/// let sol = plcp::solve_lcp(&lcp, &plcp::Settings::default()).unwrap();
+/// assert_eq!(sol.status, plcp::Status::Reached);
+/// let (z0, z1): (f64, f64) = (sol.z[0], sol.z[1]);
+/// assert!((z0 - 4.0 / 3.0).abs() < 1e-12 && (z1 - 7.0 / 3.0).abs() < 1e-12);
+/// ```
+pub fn solve_lcp<T: Scalar>(
+    lcp: &Lcp<T>,
+    settings: &Settings<T>,
+) -> Result<LcpSolution<T>, PlcpError> {
+    settings.validate(lcp.n())?;
+    let timer = std::time::Instant::now();
+    let n = lcp.n();
+    let d = Col::<T>::zeros(n);
+    let q = lcp.q.clone();
+    let start: Vec<Var> = (0..n).map(Var::W).collect();
+    let mut info = Info {
+        method: "lemke",
+        precision: T::NAME,
+        ..Info::default()
+    };
+    let problem = Plcp::new(lcp.m(), lcp.q(), d.as_ref())?;
+    let (status, message, point) =
+        match Engine::new(lcp.m(), 0, q.clone(), d.clone(), start, T::zero(), settings) {
+            Err(msg) => (
+                Status::IllConditioned,
+                msg,
+                Point {
+                    lambda: T::zero(),
+                    z: Col::zeros(n),
+                    w: q.clone(),
+                    u: Col::zeros(0),
+                },
+            ),
+            Ok(mut eng) => {
+                let r = start_phase(&mut eng, &q, &d, T::zero(), settings.covering.as_ref());
+                info.pivots = eng.pivots;
+                info.start_pivots = eng.pivots;
+                info.degenerate_pivots = eng.degenerate_pivots;
+                info.refactorisations = eng.refactorisations;
+                info.max_condition = eng.max_cond;
+                match r {
+                    Ok(()) => (Status::Reached, String::new(), eng.point(None)),
+                    Err(f) => {
+                        // Lemke's secondary ray is the LCP's outcome here, not "infeasible"
+                        let status = if f.status == Status::Infeasible {
+                            Status::SecondaryRay
+                        } else {
+                            f.status
+                        };
+                        let mut pt = eng.point(None);
+                        pt.lambda = T::zero();
+                        (status, f.message, pt)
+                    }
+                }
+            }
+        };
+    // w recomputed from z, so that the residual measures the equation honestly
+    let mut w = lcp.q.clone();
+    for j in 0..n {
+        for i in 0..n {
+            w[i] = w[i] + lcp.m[(i, j)] * point.z[j];
+        }
+    }
+    let pt = Point {
+        w: point.w.clone(),
+        ..point.clone()
+    };
+    info.residual = residual(&problem, &pt);
+    info.solve_seconds = timer.elapsed().as_secs_f64();
+    Ok(LcpSolution {
+        status,
+        z: point.z,
+        w,
+        message,
+        info,
+    })
 }

@@ -53,7 +53,7 @@
 //! ```
 #![warn(missing_docs)]
 
-pub mod basis;
+mod basis;
 pub mod error;
 pub mod io;
 pub mod lemke;

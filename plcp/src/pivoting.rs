@@ -1,1 +1,902 @@
-//! (in progress)
+//! The complementary pivoting core shared by both methods.
+//!
+//! The system is written with one column per variable,
+//!
+//! ```text
+//! sum_v a_v v = q,    a_{u_j} = -M[:, j],  a_{z_i} = -M[:, p+i],  a_{w_i} = e_{p+i},
+//!                     a_{art_k} = e_k,     a_L = -d,
+//! ```
+//!
+//! so that `M x + q + L d - (0, w) = 0`. A basis holds `p + n` variables. The
+//! path is followed by moving one nonbasic *driver* (the parameter `L`, or the
+//! complement of the variable that left last) while `L` is basic; every step ends
+//! with the lexicographic minimum-ratio rule choosing who leaves. Artificial
+//! variables (dependent equality rows, Wolfe long form) are fixed at zero: they
+//! block any step that would move them and, once out, never return.
+
+use crate::basis::{BasisFactor, DenseInverse};
+use crate::path::{Breakpoint, Point, Residual, Segment, Var};
+use crate::residual::residual_parts;
+use crate::scalar::Scalar;
+use crate::settings::Settings;
+use faer::{Col, Mat, MatRef};
+
+/// How a trace ended.
+pub(crate) enum TraceEnd<T: Scalar> {
+    /// `lambda_end` reached; the driver sits at `theta` (nonbasic, mid-step).
+    Reached { driver: Var, theta: T },
+    /// No blocking variable and `L` rises along the ray.
+    UnboundedRay { driver: Var, col: Col<T>, rate: T },
+    /// No blocking variable and `L` does not rise: no solution beyond here on this path.
+    SecondaryRay { driver: Var, col: Col<T>, rate: T },
+    /// Pivot limit.
+    PivotLimit,
+    /// Evidence of ill-conditioning.
+    IllConditioned(String),
+    /// No admissible continuation (no free variable can replace `L`).
+    Stalled(String),
+}
+
+/// What a trace records of the path (phase 2 only).
+pub(crate) struct Recorder<T: Scalar> {
+    pub segments: Vec<Segment<T>>,
+    pub breakpoints: Vec<Breakpoint<T>>,
+    pub residual: Residual,
+    pub turning_points: usize,
+    last_sign: i8,
+}
+
+impl<T: Scalar> Recorder<T> {
+    pub(crate) fn new() -> Self {
+        Self {
+            segments: Vec::new(),
+            breakpoints: Vec::new(),
+            residual: Residual::default(),
+            turning_points: 0,
+            last_sign: 0,
+        }
+    }
+}
+
+pub(crate) struct Engine<'a, T: Scalar> {
+    m: MatRef<'a, T>,
+    pub p: usize,
+    pub n: usize,
+    dim: usize,
+    /// Right-hand side and parameter direction of the system being traced.
+    pub q: Col<T>,
+    pub d: Col<T>,
+    pub basis: Vec<Var>,
+    pos: Vec<Option<usize>>,
+    factor: DenseInverse<T>,
+    pub x: Col<T>,
+    /// Current value of `L` (kept in step with `x` when `L` is basic).
+    pub lambda: T,
+    settings: &'a Settings<T>,
+    pub max_pivots: usize,
+    pub pivots: usize,
+    pub degenerate_pivots: usize,
+    pub refactorisations: usize,
+    since_refactor: usize,
+    pub max_cond: f64,
+    pivot_tol: T,
+    tie_tol: T,
+}
+
+fn is_comp(v: Var) -> bool {
+    matches!(v, Var::W(_) | Var::Z(_))
+}
+
+impl<'a, T: Scalar> Engine<'a, T> {
+    fn var_index(&self, v: Var) -> usize {
+        let (n, p) = (self.n, self.p);
+        match v {
+            Var::W(i) => i,
+            Var::Z(i) => n + i,
+            Var::U(j) => 2 * n + j,
+            Var::Artificial(k) => 2 * n + p + k,
+            Var::Lambda => 2 * n + 2 * p,
+        }
+    }
+
+    /// A new engine on the basis `basis` with `L` nonbasic at `lambda`.
+    pub(crate) fn new(
+        m: MatRef<'a, T>,
+        p: usize,
+        q: Col<T>,
+        d: Col<T>,
+        basis: Vec<Var>,
+        lambda: T,
+        settings: &'a Settings<T>,
+    ) -> Result<Self, String> {
+        let dim = m.nrows();
+        let n = dim - p;
+        let mut e = Self {
+            m,
+            p,
+            n,
+            dim,
+            q,
+            d,
+            basis: basis.clone(),
+            pos: vec![None; 2 * n + 2 * p + 1],
+            factor: DenseInverse::new(dim),
+            x: Col::zeros(dim),
+            lambda,
+            settings,
+            max_pivots: settings.max_pivots.unwrap_or(50 * dim + 1000),
+            pivots: 0,
+            degenerate_pivots: 0,
+            refactorisations: 0,
+            since_refactor: 0,
+            max_cond: 1.0,
+            pivot_tol: T::from_f64(settings.pivot_tol_eps) * T::eps(),
+            tie_tol: T::from_f64(settings.tie_tol_eps) * T::eps(),
+        };
+        for (r, v) in basis.iter().enumerate() {
+            let k = e.var_index(*v);
+            e.pos[k] = Some(r);
+        }
+        e.refactor()?;
+        e.refactorisations = 0;
+        Ok(e)
+    }
+
+    pub(crate) fn row_of(&self, v: Var) -> Option<usize> {
+        self.pos[self.var_index(v)]
+    }
+
+    fn column_of(&self, v: Var) -> Col<T> {
+        let mut a = Col::zeros(self.dim);
+        match v {
+            Var::U(j) => {
+                for i in 0..self.dim {
+                    a[i] = -self.m[(i, j)];
+                }
+            }
+            Var::Z(i) => {
+                for r in 0..self.dim {
+                    a[r] = -self.m[(r, self.p + i)];
+                }
+            }
+            Var::W(i) => a[self.p + i] = T::one(),
+            Var::Artificial(k) => a[k] = T::one(),
+            Var::Lambda => {
+                for r in 0..self.dim {
+                    a[r] = -self.d[r];
+                }
+            }
+        }
+        a
+    }
+
+    /// `B^{-1} a_v`: the change of the basic values per unit increase of `v` is its negative.
+    pub(crate) fn column(&self, v: Var) -> Col<T> {
+        match v {
+            Var::W(i) => self.factor.solve_unit(self.p + i),
+            Var::Artificial(k) => self.factor.solve_unit(k),
+            Var::Z(i) => {
+                let mut y = self.factor.solve_mat_col(self.m, self.p + i);
+                for r in 0..self.dim {
+                    y[r] = -y[r];
+                }
+                y
+            }
+            Var::U(j) => {
+                let mut y = self.factor.solve_mat_col(self.m, j);
+                for r in 0..self.dim {
+                    y[r] = -y[r];
+                }
+                y
+            }
+            Var::Lambda => self.factor.solve(&self.column_of(Var::Lambda)),
+        }
+    }
+
+    /// Rebuilds the factorisation and the basic values (drift correction).
+    pub(crate) fn refactor(&mut self) -> Result<(), String> {
+        let mut b = Mat::<T>::zeros(self.dim, self.dim);
+        for (r, v) in self.basis.iter().enumerate() {
+            let a = self.column_of(*v);
+            for i in 0..self.dim {
+                b[(i, r)] = a[i];
+            }
+        }
+        let cond = self.factor.refactor(b.as_ref()).ok_or_else(|| {
+            format!(
+                "the basis became numerically singular at L = {:e} after {} pivots",
+                self.lambda.to_f64(),
+                self.pivots
+            )
+        })?;
+        self.refactorisations += 1;
+        self.since_refactor = 0;
+        self.max_cond = self.max_cond.max(cond);
+        let rhs = self.rhs();
+        let xnew = self.factor.solve(&rhs);
+        // snap tiny negatives of sign-constrained basics (drift) to zero
+        let scale = self.xscale();
+        for r in 0..self.dim {
+            let mut v = xnew[r];
+            if is_comp(self.basis[r]) && v < T::zero() && -v <= self.tie_tol * scale {
+                v = T::zero();
+            }
+            if matches!(self.basis[r], Var::Artificial(_)) && v.abs() <= self.tie_tol * scale {
+                v = T::zero();
+            }
+            self.x[r] = v;
+        }
+        if let Some(l) = self.row_of(Var::Lambda) {
+            self.lambda = self.x[l];
+        }
+        if cond * T::eps().to_f64() > self.settings.max_cond_eps {
+            return Err(format!(
+                "basis condition number estimate {cond:.3e} at L = {:e} exceeds {:.1e}/eps ({}): results would not be accurate in this precision; use a higher precision",
+                self.lambda.to_f64(),
+                self.settings.max_cond_eps,
+                T::NAME
+            ));
+        }
+        Ok(())
+    }
+
+    /// `q + L d` when `L` is nonbasic, `q` when it is basic.
+    fn rhs(&self) -> Col<T> {
+        if self.row_of(Var::Lambda).is_some() {
+            self.q.clone()
+        } else {
+            Col::from_fn(self.dim, |i| self.q[i] + self.lambda * self.d[i])
+        }
+    }
+
+    fn xscale(&self) -> T {
+        let mut s = T::one();
+        for i in 0..self.dim {
+            s = s.max(self.q[i].abs()).max((self.lambda * self.d[i]).abs());
+            if !matches!(self.basis[i], Var::Lambda) {
+                s = s.max(self.x[i].abs());
+            }
+        }
+        s
+    }
+
+    /// Values of `(z, w, u)` now, with `driver` at `theta`.
+    pub(crate) fn point(&self, driver: Option<(Var, T)>) -> Point<T> {
+        let mut z = Col::zeros(self.n);
+        let mut w = Col::zeros(self.n);
+        let mut u = Col::zeros(self.p);
+        let mut set = |v: Var, val: T| match v {
+            Var::W(i) => w[i] = val,
+            Var::Z(i) => z[i] = val,
+            Var::U(j) => u[j] = val,
+            _ => {}
+        };
+        for (r, v) in self.basis.iter().enumerate() {
+            set(*v, self.x[r]);
+        }
+        if let Some((v, t)) = driver {
+            set(v, t);
+        }
+        Point {
+            lambda: self.lambda,
+            z,
+            w,
+            u,
+        }
+    }
+
+    /// Slopes in `L` of `(z, w, u)` along a step of the driver with column `col` and `L`-rate `rate`.
+    fn slopes(&self, driver: Var, col: &Col<T>, rate: T) -> (Col<T>, Col<T>, Col<T>) {
+        let mut dz = Col::zeros(self.n);
+        let mut dw = Col::zeros(self.n);
+        let mut du = Col::zeros(self.p);
+        let mut set = |v: Var, val: T| match v {
+            Var::W(i) => dw[i] = val,
+            Var::Z(i) => dz[i] = val,
+            Var::U(j) => du[j] = val,
+            _ => {}
+        };
+        for (r, v) in self.basis.iter().enumerate() {
+            set(*v, -col[r] / rate);
+        }
+        set(driver, T::one() / rate);
+        (dz, dw, du)
+    }
+
+    fn segment_basis(&self, driver: Var) -> Vec<Var> {
+        let mut b = Vec::with_capacity(self.n + self.p);
+        for i in 0..self.n {
+            if self.row_of(Var::W(i)).is_some() || driver == Var::W(i) {
+                b.push(Var::W(i));
+            } else {
+                b.push(Var::Z(i));
+            }
+        }
+        for j in 0..self.p {
+            if self.row_of(Var::U(j)).is_some() {
+                b.push(Var::U(j));
+            }
+        }
+        b
+    }
+
+    fn record_segment(
+        &self,
+        rec: &mut Recorder<T>,
+        driver: Var,
+        col: &Col<T>,
+        rate: T,
+        lambda_to: T,
+        unbounded: bool,
+        theta0: T,
+    ) {
+        let start = self.point(Some((driver, theta0)));
+        let (dz, dw, du) = self.slopes(driver, col, rate);
+        rec.segments.push(Segment {
+            lambda_from: self.lambda,
+            lambda_to,
+            unbounded,
+            basis: self.segment_basis(driver),
+            z_from: start.z,
+            dz,
+            w_from: start.w,
+            dw,
+            u_from: start.u,
+            du,
+        });
+    }
+
+    /// The minimum-ratio test with the lexicographic rule. Returns the row and the step.
+    fn ratio_test(&self, col: &Col<T>) -> Option<(usize, T)> {
+        let colmax = (0..self.dim).fold(T::zero(), |a, i| a.max(col[i].abs()));
+        if colmax == T::zero() {
+            return None;
+        }
+        let ptol = self.pivot_tol * colmax;
+        // artificial variables are fixed at zero: any move blocks them
+        let mut art: Option<usize> = None;
+        for r in 0..self.dim {
+            if matches!(self.basis[r], Var::Artificial(_))
+                && col[r].abs() > ptol
+                && art.is_none_or(|a| col[r].abs() > col[a].abs())
+            {
+                art = Some(r);
+            }
+        }
+        if let Some(r) = art {
+            return Some((r, T::zero()));
+        }
+        let xnorm = self.xscale();
+        let mut best: Option<T> = None;
+        let mut cands: Vec<(usize, T)> = Vec::new();
+        for r in 0..self.dim {
+            if is_comp(self.basis[r]) && col[r] > ptol {
+                let ratio = self.x[r].max(T::zero()) / col[r];
+                cands.push((r, ratio));
+                best = Some(best.map_or(ratio, |b| b.min(ratio)));
+            }
+        }
+        let tmin = best?;
+        let mut tied: Vec<usize> = cands
+            .iter()
+            .filter(|(r, t)| *t - tmin <= self.tie_tol * (tmin.abs() + xnorm / col[*r]))
+            .map(|(r, _)| *r)
+            .collect();
+        if tied.len() > 1 {
+            // lexicographic rule: compare rows of B^{-1} / col_r, complementary columns first
+            let order: Vec<usize> = (self.p..self.dim).chain(0..self.p).collect();
+            for &k in &order {
+                if tied.len() == 1 {
+                    break;
+                }
+                let vals: Vec<T> = tied
+                    .iter()
+                    .map(|&r| self.factor.inv_entry(r, k) / col[r])
+                    .collect();
+                let vmin = vals.iter().fold(vals[0], |a, &b| a.min(b));
+                let vscale = vals.iter().fold(T::zero(), |a, &b| a.max(b.abs()));
+                let tol = self.tie_tol * vscale;
+                tied = tied
+                    .iter()
+                    .zip(vals.iter())
+                    .filter(|(_, &v)| v - vmin <= tol)
+                    .map(|(&r, _)| r)
+                    .collect();
+            }
+            // still tied (numerically): the largest pivot is the most stable
+            tied.sort_by(|&a, &b| {
+                col[b]
+                    .partial_cmp(&col[a])
+                    .unwrap_or(core::cmp::Ordering::Equal)
+            });
+        }
+        let r = tied[0];
+        let theta = self.x[r].max(T::zero()) / col[r];
+        Some((r, theta))
+    }
+
+    /// Pivot `entering` (column `col = B^{-1} a`, value `value`) into row `r`.
+    fn pivot(&mut self, r: usize, entering: Var, col: &Col<T>, value: T) -> Result<(), String> {
+        let leaving = self.basis[r];
+        let li = self.var_index(leaving);
+        self.pos[li] = None;
+        let ei = self.var_index(entering);
+        self.pos[ei] = Some(r);
+        self.basis[r] = entering;
+        self.factor.replace(r, col);
+        self.x[r] = value;
+        self.pivots += 1;
+        self.since_refactor += 1;
+        if self.since_refactor >= self.settings.refactor_period {
+            self.refactor()?;
+        }
+        Ok(())
+    }
+
+    /// After an artificial left the basis: bring a free variable in for `L`, so that
+    /// `L` can drive again. Returns false if none can.
+    fn free_for_lambda(&mut self) -> Result<bool, String> {
+        let Some(l) = self.row_of(Var::Lambda) else {
+            return Ok(true);
+        };
+        let mut best: Option<(usize, Col<T>)> = None;
+        for j in 0..self.p {
+            if self.row_of(Var::U(j)).is_some() {
+                continue;
+            }
+            let col = self.column(Var::U(j));
+            let colmax = (0..self.dim).fold(T::zero(), |a, i| a.max(col[i].abs()));
+            if col[l].abs() > self.pivot_tol * colmax
+                && best.as_ref().is_none_or(|(_, c)| col[l].abs() > c[l].abs())
+            {
+                best = Some((j, col));
+            }
+        }
+        match best {
+            Some((j, col)) => {
+                // L leaves at its current value (now nonbasic); u_j enters at zero.
+                self.pivot(l, Var::U(j), &col, T::zero())?;
+                Ok(true)
+            }
+            None => Ok(false),
+        }
+    }
+
+    /// Follows the path from the current basis (`L` nonbasic, driving) until
+    /// `lambda_end`, a ray, or a limit.
+    pub(crate) fn trace(
+        &mut self,
+        lambda_end: Option<T>,
+        mut rec: Option<&mut Recorder<T>>,
+    ) -> TraceEnd<T> {
+        let mut driver = Var::Lambda;
+        if self.row_of(Var::Lambda).is_some() {
+            return TraceEnd::Stalled("internal: trace must start with L nonbasic".into());
+        }
+        loop {
+            if self.pivots >= self.max_pivots {
+                return TraceEnd::PivotLimit;
+            }
+            let col = self.column(driver);
+            let colmax = (0..self.dim).fold(T::zero(), |a, i| a.max(col[i].abs()));
+            let rate = match driver {
+                Var::Lambda => T::one(),
+                _ => match self.row_of(Var::Lambda) {
+                    Some(l) => -col[l],
+                    None => T::zero(),
+                },
+            };
+            let rate_tol = self.pivot_tol * colmax.max(T::one());
+            let rising = rate > rate_tol;
+            let moving = rate.abs() > rate_tol;
+            let block = self.ratio_test(&col);
+            if let (true, Some(end)) = (rising, lambda_end) {
+                let theta_end = (end - self.lambda) / rate;
+                if block.as_ref().is_none_or(|(_, tb)| theta_end <= *tb) {
+                    let theta_end = theta_end.max(T::zero());
+                    if let Some(rec) = rec.as_deref_mut() {
+                        if theta_end > T::zero() {
+                            self.note_direction(rec, 1);
+                            self.record_segment(rec, driver, &col, rate, end, false, T::zero());
+                        }
+                    }
+                    for r in 0..self.dim {
+                        let v = self.x[r] - theta_end * col[r];
+                        self.x[r] = v;
+                    }
+                    self.lambda = end;
+                    if let Some(l) = self.row_of(Var::Lambda) {
+                        self.x[l] = end;
+                    }
+                    return TraceEnd::Reached {
+                        driver,
+                        theta: theta_end,
+                    };
+                }
+            }
+            let Some((r, theta)) = block else {
+                if rising {
+                    if let Some(rec) = rec.as_deref_mut() {
+                        self.note_direction(rec, 1);
+                        self.record_segment(
+                            rec,
+                            driver,
+                            &col,
+                            rate,
+                            crate::scalar::infinity(),
+                            true,
+                            T::zero(),
+                        );
+                    }
+                    return TraceEnd::UnboundedRay { driver, col, rate };
+                }
+                return TraceEnd::SecondaryRay { driver, col, rate };
+            };
+            // the step
+            if let Some(rec) = rec.as_deref_mut() {
+                if moving && theta > T::zero() {
+                    let sign = if rate > T::zero() { 1 } else { -1 };
+                    self.note_direction(rec, sign);
+                    let lambda_to = self.lambda + theta * rate;
+                    self.record_segment(rec, driver, &col, rate, lambda_to, false, T::zero());
+                }
+            }
+            let lambda_before = self.lambda;
+            for i in 0..self.dim {
+                let v = self.x[i] - theta * col[i];
+                self.x[i] = v;
+            }
+            if driver == Var::Lambda {
+                self.lambda = self.lambda + theta;
+            } else if let Some(l) = self.row_of(Var::Lambda) {
+                self.lambda = self.x[l];
+            }
+            let degenerate = theta == T::zero() || !moving;
+            if theta == T::zero() {
+                self.degenerate_pivots += 1;
+            }
+            let leaving = self.basis[r];
+            if let Err(msg) = self.pivot(r, driver, &col, theta) {
+                return TraceEnd::IllConditioned(msg);
+            }
+            if let Some(l) = self.row_of(Var::Lambda) {
+                self.lambda = self.x[l];
+            }
+            let _ = lambda_before;
+            match leaving {
+                Var::W(_) | Var::Z(_) => {
+                    let next = leaving.complement().expect("complementary");
+                    if let Some(rec) = rec.as_deref_mut() {
+                        rec.breakpoints.push(Breakpoint {
+                            lambda: self.lambda,
+                            entering: next,
+                            leaving,
+                            degenerate,
+                            turning: false,
+                        });
+                        let pt = self.point(None);
+                        let res = residual_parts(self.m, self.q.as_ref(), self.d.as_ref(), self.p, &pt);
+                        rec.residual = rec.residual.max(res);
+                    }
+                    driver = next;
+                }
+                Var::Artificial(_) => match self.free_for_lambda() {
+                    Ok(true) => driver = Var::Lambda,
+                    Ok(false) => {
+                        return TraceEnd::Stalled(format!(
+                            "at L = {:e} an equality row blocks the path and no free variable can take over: the path cannot be continued",
+                            self.lambda.to_f64()
+                        ))
+                    }
+                    Err(msg) => return TraceEnd::IllConditioned(msg),
+                },
+                Var::U(_) | Var::Lambda => {
+                    return TraceEnd::Stalled("internal: a free variable blocked".into())
+                }
+            }
+        }
+    }
+
+    pub(crate) fn tie_tol_value(&self) -> T {
+        self.tie_tol
+    }
+
+    fn note_direction(&self, rec: &mut Recorder<T>, sign: i8) {
+        if rec.last_sign > 0 && sign < 0 {
+            rec.turning_points += 1;
+            if let Some(b) = rec.breakpoints.last_mut() {
+                b.turning = true;
+            }
+        }
+        rec.last_sign = sign;
+    }
+
+    /// After a phase ended with `driver` at `theta` and `L` basic: make the basis
+    /// complementary again by pivoting the driver in for `L` (which becomes nonbasic
+    /// at its current value).
+    pub(crate) fn settle(&mut self, driver: Var, theta: T) -> Result<(), String> {
+        if driver == Var::Lambda {
+            return Ok(());
+        }
+        let Some(l) = self.row_of(Var::Lambda) else {
+            return Ok(());
+        };
+        let col = self.column(driver);
+        self.pivot(l, driver, &col, theta)
+    }
+
+    /// Replaces the system's right-hand side and direction (phase change) and
+    /// recomputes the basic values with `L` nonbasic at `lambda`.
+    pub(crate) fn reset_system(&mut self, q: Col<T>, d: Col<T>, lambda: T) -> Result<(), String> {
+        self.q = q;
+        self.d = d;
+        self.lambda = lambda;
+        self.refactor()
+    }
+}
+
+/// Why the start phase failed.
+pub(crate) struct StartFailure {
+    pub status: crate::path::Status,
+    pub message: String,
+}
+
+/// The start phase: after the basis `eng` holds (all `w` basic, free variables as
+/// far as the rank allows), find a complementary basis feasible at `lambda0` by
+/// Lemke's method with an artificial variable and covering vector `c`.
+///
+/// Lemke's method is itself a parametric path: with `a = max_i (-x_i / c_i)` the
+/// system `q + lambda0 d + (a - s) c` is trivially solved at `s = 0`, and `s = a`
+/// gives back the problem at `lambda0`. The artificial variable is `z0 = a - s`;
+/// "`z0` leaves the basis" is "`s` reaches `a`", which wins every tie.
+pub(crate) fn start_phase<T: Scalar>(
+    eng: &mut Engine<'_, T>,
+    q: &Col<T>,
+    d: &Col<T>,
+    lambda0: T,
+    covering: Option<&Col<T>>,
+) -> Result<(), StartFailure> {
+    use crate::path::Status;
+    let (p, n) = (eng.p, eng.n);
+    let dim = p + n;
+    let c = |i: usize| covering.map_or(T::one(), |c| c[i]);
+    // equality rows left to artificial variables must hold already
+    let mut scale = T::one();
+    for r in 0..dim {
+        scale = scale.max(q[r].abs()).max((lambda0 * d[r]).abs());
+    }
+    let tol = eng.tie_tol_value() * scale * T::from_f64(dim.max(1) as f64);
+    for r in 0..dim {
+        if let Var::Artificial(k) = eng.basis[r] {
+            if eng.x[r].abs() > tol {
+                return Err(StartFailure {
+                    status: Status::Infeasible,
+                    message: format!(
+                        "the equality rows are inconsistent at L = {:e}: row {k} depends on the others but its right-hand side is off by {:e}",
+                        lambda0.to_f64(),
+                        eng.x[r].to_f64()
+                    ),
+                });
+            }
+        }
+    }
+    let mut a = T::zero();
+    for r in 0..dim {
+        if let Var::W(i) = eng.basis[r] {
+            let need = -eng.x[r] / c(i);
+            if eng.x[r] < -tol && need > a {
+                a = need;
+            }
+        }
+    }
+    if a == T::zero() {
+        return Ok(());
+    }
+    let mut qa = Col::zeros(dim);
+    let mut da = Col::zeros(dim);
+    for r in 0..dim {
+        qa[r] = q[r] + lambda0 * d[r];
+    }
+    for i in 0..n {
+        qa[p + i] = qa[p + i] + a * c(i);
+        da[p + i] = -c(i);
+    }
+    let ill = |m: String| StartFailure {
+        status: Status::IllConditioned,
+        message: m,
+    };
+    eng.reset_system(qa, da, T::zero()).map_err(ill)?;
+    match eng.trace(Some(a), None) {
+        TraceEnd::Reached { driver, theta } => {
+            eng.settle(driver, theta).map_err(ill)?;
+            eng.reset_system(q.clone(), d.clone(), lambda0).map_err(ill)?;
+            Ok(())
+        }
+        TraceEnd::SecondaryRay { .. } | TraceEnd::UnboundedRay { .. } => Err(StartFailure {
+            status: Status::Infeasible,
+            message: format!(
+                "Lemke's method with the covering vector ended on a secondary ray at L = {:e}: no solution was found at the start value (for copositive-plus M this proves there is none)",
+                lambda0.to_f64()
+            ),
+        }),
+        TraceEnd::Stalled(m) => Err(StartFailure {
+            status: Status::Infeasible,
+            message: m,
+        }),
+        TraceEnd::PivotLimit => Err(StartFailure {
+            status: Status::PivotLimit,
+            message: format!(
+                "pivot limit ({}) reached in the start phase at L = {:e}",
+                eng.max_pivots,
+                lambda0.to_f64()
+            ),
+        }),
+        TraceEnd::IllConditioned(m) => Err(ill(m)),
+    }
+}
+
+/// Traces the whole path: start phase at `lambda0`, then `L` rising to `lambda_max`.
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn run_path<T: Scalar>(
+    m: MatRef<'_, T>,
+    p: usize,
+    q: &Col<T>,
+    d: &Col<T>,
+    lambda0: T,
+    lambda_max: Option<T>,
+    start: Vec<Var>,
+    settings: &Settings<T>,
+    method: &'static str,
+    free_block: crate::path::FreeBlockInfo,
+) -> crate::path::Path<T> {
+    use crate::path::{Info, Path, Ray, Status};
+    let timer = std::time::Instant::now();
+    let dim = m.nrows();
+    let n = dim - p;
+    let mut info = Info {
+        method,
+        precision: T::NAME,
+        free_block,
+        ..Info::default()
+    };
+    let empty = |status: Status, message: String, info: Info| Path {
+        status,
+        lambda0,
+        lambda_max,
+        lambda_reached: lambda0,
+        breakpoints: Vec::new(),
+        segments: Vec::new(),
+        end: Point {
+            lambda: lambda0,
+            z: Col::zeros(n),
+            w: Col::zeros(n),
+            u: Col::zeros(p),
+        },
+        ray: None,
+        message,
+        info,
+    };
+    let mut eng = match Engine::new(m, p, q.clone(), d.clone(), start, lambda0, settings) {
+        Ok(e) => e,
+        Err(msg) => {
+            info.solve_seconds = timer.elapsed().as_secs_f64();
+            return empty(Status::IllConditioned, msg, info);
+        }
+    };
+    let fill = |info: &mut Info, eng: &Engine<'_, T>| {
+        info.pivots = eng.pivots;
+        info.degenerate_pivots = eng.degenerate_pivots;
+        info.refactorisations = eng.refactorisations;
+        info.max_condition = eng.max_cond;
+    };
+    if let Err(f) = start_phase(&mut eng, q, d, lambda0, settings.covering.as_ref()) {
+        fill(&mut info, &eng);
+        info.start_pivots = eng.pivots;
+        info.solve_seconds = timer.elapsed().as_secs_f64();
+        let mut path = empty(f.status, f.message, info);
+        path.end = eng.point(None);
+        path.end.lambda = lambda0;
+        return path;
+    }
+    info.start_pivots = eng.pivots;
+    let mut rec = Recorder::new();
+    let start_point = eng.point(None);
+    rec.residual = residual_parts(m, q.as_ref(), d.as_ref(), p, &start_point);
+    let end = eng.trace(lambda_max, Some(&mut rec));
+    let ray_of = |eng: &Engine<'_, T>, driver: Var, col: &Col<T>, rate: T| {
+        let mut dz = Col::zeros(n);
+        let mut dw = Col::zeros(n);
+        let mut du = Col::zeros(p);
+        let mut set = |v: Var, val: T| match v {
+            Var::W(i) => dw[i] = val,
+            Var::Z(i) => dz[i] = val,
+            Var::U(j) => du[j] = val,
+            _ => {}
+        };
+        for (r, v) in eng.basis.iter().enumerate() {
+            set(*v, -col[r]);
+        }
+        set(driver, T::one());
+        Ray {
+            start: eng.point(None),
+            dz,
+            dw,
+            du,
+            dlambda: rate,
+        }
+    };
+    let (status, end_point, lambda_reached, ray, message) = match end {
+        TraceEnd::Reached { driver, theta } => {
+            let pt = eng.point(Some((driver, theta)));
+            let l = pt.lambda;
+            (Status::Reached, pt, l, None, String::new())
+        }
+        TraceEnd::UnboundedRay { driver, col, rate } => {
+            let r = ray_of(&eng, driver, &col, rate);
+            (
+                Status::UnboundedRay,
+                eng.point(None),
+                crate::scalar::infinity(),
+                Some(r),
+                format!(
+                    "the last segment, from L = {:e}, holds for every larger L",
+                    eng.lambda.to_f64()
+                ),
+            )
+        }
+        TraceEnd::SecondaryRay { driver, col, rate } => {
+            let r = ray_of(&eng, driver, &col, rate);
+            let l = eng.lambda;
+            (
+                Status::SecondaryRay,
+                eng.point(None),
+                l,
+                Some(r),
+                format!(
+                    "secondary ray at L* = {:e}: the path has no continuation beyond it",
+                    l.to_f64()
+                ),
+            )
+        }
+        TraceEnd::Stalled(msg) => {
+            let l = eng.lambda;
+            (Status::SecondaryRay, eng.point(None), l, None, msg)
+        }
+        TraceEnd::PivotLimit => {
+            let l = eng.lambda;
+            (
+                Status::PivotLimit,
+                eng.point(None),
+                l,
+                None,
+                format!(
+                    "pivot limit ({}) reached at L = {:e}",
+                    eng.max_pivots,
+                    l.to_f64()
+                ),
+            )
+        }
+        TraceEnd::IllConditioned(msg) => {
+            let l = eng.lambda;
+            (Status::IllConditioned, eng.point(None), l, None, msg)
+        }
+    };
+    let res = residual_parts(m, q.as_ref(), d.as_ref(), p, &end_point);
+    rec.residual = rec.residual.max(res);
+    fill(&mut info, &eng);
+    info.turning_points = rec.turning_points;
+    info.residual = rec.residual;
+    info.solve_seconds = timer.elapsed().as_secs_f64();
+    Path {
+        status,
+        lambda0,
+        lambda_max,
+        lambda_reached,
+        breakpoints: rec.breakpoints,
+        segments: rec.segments,
+        end: end_point,
+        ray,
+        message,
+        info,
+    }
+}

@@ -1,1 +1,107 @@
-//! (in progress)
+//! Reduction of a mixed PLCP to standard form by a Schur complement on its free block.
+//!
+//! With `F = M[u, u]` nonsingular, the equality rows give
+//! `u = -F^{-1} (M[u, z] z + q_u + L d_u)`, and the complementary rows become
+//!
+//! ```text
+//! w = (M[z,z] - M[z,u] F^{-1} M[u,z]) z + (q_z - M[z,u] F^{-1} q_u) + L (d_z - M[z,u] F^{-1} d_u).
+//! ```
+
+use crate::error::PlcpError;
+use crate::problem::Plcp;
+use crate::scalar::Scalar;
+use crate::tolerance::rank_tol;
+use faer::linalg::solvers::Solve;
+use faer::{Col, Mat};
+
+/// The reduced problem and what it takes to recover `u`.
+pub struct Reduction<T: Scalar> {
+    /// The standard-form problem in `z` alone.
+    pub reduced: Plcp<T>,
+    /// `G = F^{-1} [M[u,z] | q_u | d_u]`: `u = -(G_z z + G_q + L G_d)`.
+    g: Mat<T>,
+}
+
+/// Numerical rank of a square matrix by full-pivoting LU.
+pub fn numerical_rank<T: Scalar>(f: faer::MatRef<'_, T>) -> usize {
+    let p = f.nrows();
+    if p == 0 {
+        return 0;
+    }
+    let lu = f.full_piv_lu();
+    let u = lu.U();
+    let k = p.min(u.ncols());
+    let largest = (0..k).fold(T::zero(), |a, i| a.max(u[(i, i)].abs()));
+    if largest == T::zero() {
+        return 0;
+    }
+    let tol = rank_tol(p, largest);
+    (0..k).filter(|&i| u[(i, i)].abs() > tol).count()
+}
+
+impl<T: Scalar> Reduction<T> {
+    /// Eliminates the free variables. `Err(SingularFreeBlock)` if the free block is singular.
+    pub fn new(problem: &Plcp<T>) -> Result<Self, PlcpError> {
+        let p = problem.free();
+        let n = problem.n();
+        let m = problem.m();
+        let f = m.submatrix(0, 0, p, p);
+        let rank = numerical_rank(f);
+        if rank < p {
+            return Err(PlcpError::SingularFreeBlock { p, rank });
+        }
+        let mut rhs = Mat::<T>::zeros(p, n + 2);
+        for i in 0..p {
+            for j in 0..n {
+                rhs[(i, j)] = m[(i, p + j)];
+            }
+            rhs[(i, n)] = problem.q()[i];
+            rhs[(i, n + 1)] = problem.d()[i];
+        }
+        let lu = f.partial_piv_lu();
+        let g = lu.solve(rhs.as_ref());
+        let mzu = m.submatrix(p, 0, n, p);
+        let prod = mzu * g.as_ref();
+        let mr = Mat::from_fn(n, n, |i, j| m[(p + i, p + j)] - prod[(i, j)]);
+        let qr = Col::from_fn(n, |i| problem.q()[p + i] - prod[(i, n)]);
+        let dr = Col::from_fn(n, |i| problem.d()[p + i] - prod[(i, n + 1)]);
+        for v in mr
+            .col_iter()
+            .flat_map(|c| c.iter().copied())
+            .chain(qr.iter().copied())
+        {
+            if !v.is_finite() {
+                return Err(PlcpError::SingularFreeBlock { p, rank: p - 1 });
+            }
+        }
+        let reduced = Plcp::new(mr.as_ref(), qr.as_ref(), dr.as_ref())?
+            .with_range(problem.lambda0(), problem.lambda_max())?;
+        Ok(Self { reduced, g })
+    }
+
+    /// `u` at parameter `lambda` for the complementary part `z`.
+    pub fn recover_u(&self, z: &Col<T>, lambda: T) -> Col<T> {
+        let p = self.g.nrows();
+        let n = z.nrows();
+        Col::from_fn(p, |i| {
+            let mut s = self.g[(i, n)] + lambda * self.g[(i, n + 1)];
+            for j in 0..n {
+                s = s + self.g[(i, j)] * z[j];
+            }
+            -s
+        })
+    }
+
+    /// `du/dL` for a slope `dz` of `z`.
+    pub fn recover_du(&self, dz: &Col<T>) -> Col<T> {
+        let p = self.g.nrows();
+        let n = dz.nrows();
+        Col::from_fn(p, |i| {
+            let mut s = self.g[(i, n + 1)];
+            for j in 0..n {
+                s = s + self.g[(i, j)] * dz[j];
+            }
+            -s
+        })
+    }
+}

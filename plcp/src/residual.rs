@@ -3,6 +3,7 @@
 use crate::path::{Point, Residual};
 use crate::problem::Plcp;
 use crate::scalar::Scalar;
+use faer::{ColRef, MatRef};
 
 /// The residuals of `point` for `problem`, each relative to the data's scale:
 ///
@@ -12,11 +13,18 @@ use crate::scalar::Scalar;
 ///   `sw = max(1, max |w|)`;
 /// * complementarity: `max_i |z_i w_i| / (sz sw)`.
 pub fn residual<T: Scalar>(problem: &Plcp<T>, point: &Point<T>) -> Residual {
-    let p = problem.free();
-    let n = problem.n();
-    let m = problem.m();
-    let q = problem.q();
-    let d = problem.d();
+    residual_parts(problem.m(), problem.q(), problem.d(), problem.free(), point)
+}
+
+/// [`residual`] on the raw data: `M` of order `p + n`, `q`, `d`, `p` free variables.
+pub fn residual_parts<T: Scalar>(
+    m: MatRef<'_, T>,
+    q: ColRef<'_, T>,
+    d: ColRef<'_, T>,
+    p: usize,
+    point: &Point<T>,
+) -> Residual {
+    let n = m.nrows() - p;
     let l = point.lambda.to_f64();
     let x: Vec<f64> = (0..p)
         .map(|j| point.u[j].to_f64())
@@ -26,7 +34,9 @@ pub fn residual<T: Scalar>(problem: &Plcp<T>, point: &Point<T>) -> Residual {
     for r in 0..p + n {
         // sum in the working precision, scale in f64
         let mut acc = q[r] + point.lambda * d[r];
-        let mut scale = 1.0f64.max(q[r].to_f64().abs()).max((l * d[r].to_f64()).abs());
+        let mut scale = 1.0f64
+            .max(q[r].to_f64().abs())
+            .max((l * d[r].to_f64()).abs());
         for j in 0..p + n {
             let xj = if j < p { point.u[j] } else { point.z[j - p] };
             acc = acc + m[(r, j)] * xj;

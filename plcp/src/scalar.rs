@@ -7,9 +7,7 @@ use faer::traits::math_utils;
 use faer::traits::RealField;
 
 /// A real floating-point type the solvers run in: `f32`, `f64` or [`faer::fx128`].
-pub trait Scalar:
-    RealField + Copy + Send + Sync + core::ops::Neg<Output = Self> + 'static
-{
+pub trait Scalar: RealField + Copy + Send + Sync + core::ops::Neg<Output = Self> + 'static {
     /// A short name: `"f32"`, `"f64"`, `"f128"`.
     const NAME: &'static str;
 
@@ -150,4 +148,9 @@ mod tests {
         roundtrip::<faer::fx128>();
         assert!(faer::fx128::eps().to_f64() < 1e-30);
     }
+}
+
+/// Positive infinity in `T`.
+pub fn infinity<T: Scalar>() -> T {
+    math_utils::infinity::<T>()
 }

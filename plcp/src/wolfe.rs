@@ -1,2 +1,87 @@
-//! (in progress)
-pub(crate) fn solve<T: crate::Scalar>(_p: &crate::Plcp<T>, _s: &crate::Settings<T>) -> Result<crate::Path<T>, crate::PlcpError> { todo!() }
+//! Wolfe's simplex method for quadratic programming, long form, on the unreduced
+//! tableau of a mixed PLCP.
+//!
+//! The mixed system is the KKT system of a parametric QP when it is monotone
+//! (after the sign changes of equality rows and free variables that KKT systems
+//! allow); system (9) of the frames crate is such a system. The long form keeps
+//! every row and column:
+//!
+//! * free variables are brought into the basis as far as the rank of the free
+//!   block allows (a full-pivoting LU picks them); the others stay nonbasic at
+//!   zero (their values are not unique: e.g. redundant member forces), and the
+//!   dependent equality rows keep an artificial variable fixed at zero. Both sets
+//!   are reported in [`crate::FreeBlockInfo`]. When a complementary variable
+//!   later needs a dependent row (a hinge whose rotation a compatibility
+//!   condition constrains), the artificial leaves and a nonbasic free variable
+//!   takes over from `L`, which drives again;
+//! * a complementary start at `L0` comes from `z = 0` when that is feasible, else
+//!   from the same artificial-variable start as Lemke's method, on the long form;
+//! * `L` then rises by pivots with restricted basis entry (`z_i`, `w_i` never both
+//!   basic) and the lexicographic rule, as in [`crate::lemke`].
+//!
+//! What the method needs: a complementary start at `L0`, and a problem for which
+//! the path continues (monotone problems). Where it does not, the path ends with
+//! a [`crate::Status`] (`infeasible`, `secondary_ray`), never a wrong answer: every
+//! breakpoint's residual is measured on the unreduced system.
+
+use crate::path::{FreeBlockInfo, Path, Var};
+use crate::pivoting::run_path;
+use crate::reduce::numerical_rank;
+use crate::tolerance::rank_tol;
+use crate::{error::PlcpError, problem::Plcp, scalar::Scalar, settings::Settings};
+
+/// The start basis of the long form: free variables by a full-pivoting LU of the
+/// free block, artificial variables in the dependent rows, all `w`.
+pub(crate) fn start_basis<T: Scalar>(problem: &Plcp<T>) -> (Vec<Var>, FreeBlockInfo) {
+    let p = problem.free();
+    let n = problem.n();
+    let mut basis = Vec::with_capacity(p + n);
+    let mut info = FreeBlockInfo::default();
+    if p > 0 {
+        let f = problem.m().submatrix(0, 0, p, p);
+        let lu = f.full_piv_lu();
+        let u = lu.U();
+        let largest = (0..p).fold(T::zero(), |a, i| a.max(u[(i, i)].abs()));
+        let tol = rank_tol(p, largest);
+        let rank = if largest == T::zero() {
+            0
+        } else {
+            (0..p).filter(|&i| u[(i, i)].abs() > tol).count()
+        };
+        let (prow, _) = lu.P().arrays();
+        let (qcol, _) = lu.Q().arrays();
+        for &j in &qcol[..rank] {
+            basis.push(Var::U(j));
+        }
+        for &k in &prow[rank..] {
+            basis.push(Var::Artificial(k));
+        }
+        info.rank = rank;
+        info.nonbasic_free = qcol[rank..].to_vec();
+        info.nonbasic_free.sort_unstable();
+        info.dependent_rows = prow[rank..].to_vec();
+        info.dependent_rows.sort_unstable();
+        debug_assert_eq!(rank, numerical_rank(f));
+    }
+    basis.extend((0..n).map(Var::W));
+    (basis, info)
+}
+
+pub(crate) fn solve<T: Scalar>(
+    problem: &Plcp<T>,
+    settings: &Settings<T>,
+) -> Result<Path<T>, PlcpError> {
+    let (basis, info) = start_basis(problem);
+    Ok(run_path(
+        problem.m(),
+        problem.free(),
+        &problem.q().to_owned(),
+        &problem.d().to_owned(),
+        problem.lambda0(),
+        problem.lambda_max(),
+        basis,
+        settings,
+        "wolfe",
+        info,
+    ))
+}
