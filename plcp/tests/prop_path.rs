@@ -1,0 +1,395 @@
+//! Property tests of the standard-form path (`Method::Lemke`) on random PLCPs
+//! of order `n <= 8`, in f64, f32 and fx128.
+//!
+//! Matrix classes (all data dyadic rationals, so every precision solves the same
+//! problem exactly):
+//!
+//! * monotone, positive definite: `M = B B' + S + I/8` (`B` square, `S` skew);
+//! * monotone, PSD and singular: `M = B B' (+ S)` with `B` of rank `< n`;
+//! * P-matrices that are not monotone: strictly row diagonally dominant with a
+//!   positive diagonal, and permuted triangular with a positive diagonal.
+//!
+//! `q >= 0` and `q` with negative entries (start phase), random `d`, random
+//! `lambda0`, finite and infinite `lambda_max`.
+//!
+//! At both ends of every segment and at interior points (the midpoint and a
+//! random fraction; two points on an unbounded last segment) the residual of
+//! `plcp::residual::residual` (equation, feasibility, complementarity; relative)
+//! must be below `Tol::residual`; every point must be a complementary basic
+//! solution found by enumerating the `2^n` bases, equal to the unique solution
+//! (`z`) for P-matrices and positive definite `M`, and with the unique `w` for
+//! symmetric PSD `M`. The path is continuous in `w` at every breakpoint, and in `z`
+//! where the solution is unique. A path that stops (secondary ray, infeasible)
+//! must be right to: enumeration finds no basic solution just beyond the stop.
+//!
+//! Tolerances (relative):
+//!
+//! | precision | residual | forward (oracle, continuity) | oracle feasibility |
+//! |---|---|---|---|
+//! | f64 | 1e-11 | 1e-8 | 1e-9 |
+//! | f32 | 2e-5 | 2e-3 (well-conditioned classes only) | 1e-9 (oracle in f64) |
+//! | fx128 | 1e-27 | 1e-22 | 1e-24 |
+
+mod common;
+
+use common::*;
+use faer::Col;
+use plcp::{Path, Plcp, Point, Scalar, Settings, Status};
+use proptest::prelude::*;
+use proptest::test_runner::TestCaseError;
+
+const TOL_F64: Tol = Tol {
+    residual: 1e-11,
+    forward: 1e-8,
+    enum_feas: 1e-9,
+    lambda: 1e-9,
+};
+const TOL_F32: Tol = Tol {
+    residual: 2e-5,
+    forward: 2e-3,
+    enum_feas: 1e-9,
+    lambda: 1e-4,
+};
+const TOL_F128: Tol = Tol {
+    residual: 1e-27,
+    forward: 1e-22,
+    enum_feas: 1e-24,
+    lambda: 1e-24,
+};
+
+// ------------------------------------------------------------------ strategies
+
+fn dy(k: i32, denom: f64) -> f64 {
+    k as f64 / denom
+}
+
+/// `q` (nonnegative or not), `d`, `lambda0`, `lambda_max`.
+fn rhs(n: usize) -> impl Strategy<Value = (Vec<f64>, Vec<f64>, f64, Option<f64>)> {
+    (
+        prop::collection::vec(-64i32..=64, n),
+        any::<bool>(),
+        prop::collection::vec(-64i32..=64, n),
+        prop_oneof![3 => Just(0i32), 1 => -8i32..=8],
+        prop_oneof![1 => Just(None), 1 => (1i32..=64).prop_map(Some)],
+    )
+        .prop_map(|(q, nonneg, d, l0, lm)| {
+            let q: Vec<f64> = q
+                .into_iter()
+                .map(|k| dy(if nonneg { k.abs() } else { k }, 64.0))
+                .collect();
+            let d: Vec<f64> = d.into_iter().map(|k| dy(k, 64.0)).collect();
+            let l0 = dy(l0, 4.0);
+            (q, d, l0, lm.map(|k| l0 + dy(k, 8.0)))
+        })
+}
+
+fn with_rhs(
+    m: faer::Mat<f64>,
+    kind: Kind,
+    (q, d, lambda0, lambda_max): (Vec<f64>, Vec<f64>, f64, Option<f64>),
+) -> Instance {
+    Instance {
+        m,
+        q,
+        d,
+        free: 0,
+        lambda0,
+        lambda_max,
+        kind,
+    }
+}
+
+/// `B B' + S + shift I`, `B` square with entries k/8 in [-1, 1].
+fn positive_definite(shift: f64) -> impl Strategy<Value = Instance> {
+    (1usize..=8).prop_flat_map(move |n| {
+        (
+            prop::collection::vec(-8i32..=8, n * n),
+            prop::collection::vec(-8i32..=8, n * n),
+            any::<bool>(),
+            rhs(n),
+        )
+            .prop_map(move |(b, s, with_skew, r)| {
+                let b: Vec<f64> = b.into_iter().map(|k| dy(k, 8.0)).collect();
+                let s: Vec<f64> = s
+                    .into_iter()
+                    .map(|k| if with_skew { dy(k, 8.0) } else { 0.0 })
+                    .collect();
+                with_rhs(monotone(&b, n, n, &s, shift), Kind::PositiveDefinite, r)
+            })
+    })
+}
+
+/// `B B' (+ S)`, `B` n x r with `r < n`: PSD and singular symmetric part.
+fn psd_singular() -> impl Strategy<Value = Instance> {
+    (1usize..=8)
+        .prop_flat_map(|n| (Just(n), 0..n))
+        .prop_flat_map(|(n, r)| {
+            (
+                prop::collection::vec(-8i32..=8, n * r),
+                prop::collection::vec(-8i32..=8, n * n),
+                any::<bool>(),
+                rhs(n),
+            )
+                .prop_map(move |(b, s, with_skew, rh)| {
+                    let b: Vec<f64> = b.into_iter().map(|k| dy(k, 8.0)).collect();
+                    let s: Vec<f64> = s
+                        .into_iter()
+                        .map(|k| if with_skew { dy(k, 8.0) } else { 0.0 })
+                        .collect();
+                    let kind = if with_skew && n > 1 {
+                        Kind::PsdSingularSkew
+                    } else {
+                        Kind::PsdSingularSymmetric
+                    };
+                    with_rhs(monotone(&b, n, r, &s, 0.0), kind, rh)
+                })
+        })
+}
+
+/// Diagonally dominant (positive diagonal) or permuted triangular (positive diagonal).
+fn p_matrix() -> impl Strategy<Value = Instance> {
+    (1usize..=8).prop_flat_map(|n| {
+        (
+            prop::collection::vec(-16i32..=16, n * n),
+            prop::collection::vec(4i32..=16, n),
+            Just((0..n).collect::<Vec<usize>>()).prop_shuffle(),
+            any::<bool>(),
+            rhs(n),
+        )
+            .prop_map(move |(off, diag, perm, dominant, r)| {
+                let off: Vec<f64> = off.into_iter().map(|k| dy(k, 16.0)).collect();
+                let diag: Vec<f64> = diag.into_iter().map(|k| dy(k, 8.0)).collect();
+                let m = if dominant {
+                    let margin: Vec<f64> = diag.iter().map(|v| v / 4.0).collect();
+                    diag_dominant(&off, &margin, n)
+                } else {
+                    permuted_triangular(&off, &diag, &perm, n)
+                };
+                with_rhs(m, Kind::PMatrix, r)
+            })
+    })
+}
+
+/// Well-conditioned P-matrices for f32: diagonally dominant only.
+fn p_matrix_dominant() -> impl Strategy<Value = Instance> {
+    (1usize..=8).prop_flat_map(|n| {
+        (
+            prop::collection::vec(-16i32..=16, n * n),
+            prop::collection::vec(4i32..=16, n),
+            rhs(n),
+        )
+            .prop_map(move |(off, margin, r)| {
+                let off: Vec<f64> = off.into_iter().map(|k| dy(k, 16.0)).collect();
+                let margin: Vec<f64> = margin.into_iter().map(|k| dy(k, 8.0)).collect();
+                with_rhs(diag_dominant(&off, &margin, n), Kind::PMatrix, r)
+            })
+    })
+}
+
+// ------------------------------------------------------------------ the property
+
+/// A point in another precision: exact when `O` is `T` (the identity is passed
+/// as `convert`), through f64 otherwise.
+fn via_f64<T: Scalar, O: Scalar>(p: &Point<T>) -> Point<O> {
+    Point {
+        lambda: O::from_f64(p.lambda.to_f64()),
+        z: col_t::<O>(&col_f64(p.z.as_ref())),
+        w: col_t::<O>(&col_f64(p.w.as_ref())),
+        u: col_t::<O>(&col_f64(p.u.as_ref())),
+    }
+}
+
+/// Solves `inst` in precision `T` and checks the path; the oracle runs in
+/// precision `O` (the same as `T`, or f64 for f32 paths) on at most
+/// `max_oracle_points` of the checked points (all of them if `usize::MAX`).
+fn check_instance<T: Scalar, O: Scalar>(
+    inst: &Instance,
+    tol: Tol,
+    frac: f64,
+    max_oracle_points: usize,
+    convert: fn(&Point<T>) -> Point<O>,
+) -> Result<(), String> {
+    let problem: Plcp<T> = inst.plcp::<T>();
+    let path: Path<T> = plcp::solve(&problem, &Settings::default())
+        .map_err(|e| format!("solve returned Err: {e}"))?;
+    let oracle_problem: Plcp<O> = inst.plcp::<O>();
+    let kind = inst.kind;
+    // what the status may be
+    let success = path.status.is_success();
+    if kind.unique_z() && !success {
+        return Err(format!(
+            "status {:?} on a problem with a unique solution for every L ({})",
+            path.status, path.message
+        ));
+    }
+    if !matches!(
+        path.status,
+        Status::Reached | Status::UnboundedRay | Status::SecondaryRay | Status::Infeasible
+    ) {
+        return Err(format!(
+            "status {:?} on a small monotone or P-matrix problem ({})",
+            path.status, path.message
+        ));
+    }
+    if inst.lambda_max.is_some() && path.status == Status::UnboundedRay {
+        return Err("UnboundedRay with a finite lambda_max: expected Reached".into());
+    }
+    if inst.lambda_max.is_none() && path.status == Status::Reached {
+        return Err("Reached with an infinite lambda_max".into());
+    }
+    let points = check_path(&problem, &path, tol, frac, kind.unique_z(), true)?;
+    // the oracle at the checked points
+    let step = (points.len() / max_oracle_points.max(1)).max(1);
+    for pt in points.iter().step_by(step) {
+        let pt_o = convert(pt);
+        compare_with_enumeration(&oracle_problem, &pt_o, kind, tol.forward, tol.enum_feas)?;
+    }
+    // a stop must be justified: no basic solution just beyond it
+    let stop_at = match path.status {
+        Status::SecondaryRay => Some(path.lambda_reached.to_f64()),
+        Status::Infeasible => Some(inst.lambda0),
+        _ => None,
+    };
+    if let Some(l) = stop_at {
+        let beyond = if path.status == Status::Infeasible {
+            l
+        } else {
+            l + 1e-3 * (1.0 + l.abs())
+        };
+        let sols = enumerate(
+            oracle_problem.m(),
+            oracle_problem.q(),
+            oracle_problem.d(),
+            0,
+            O::from_f64(beyond),
+            tol.enum_feas,
+        );
+        if let Some(s) = sols.first() {
+            return Err(format!(
+                "status {:?} at L = {l} but enumeration finds a solution at L = {beyond}: z = {:?}",
+                path.status,
+                col_f64(s.z.as_ref())
+            ));
+        }
+        if let Some(lm) = inst.lambda_max {
+            if path.status == Status::SecondaryRay && l > lm {
+                return Err("secondary ray beyond lambda_max".into());
+            }
+        }
+    }
+    Ok(())
+}
+
+fn run<T: Scalar, O: Scalar>(
+    inst: &Instance,
+    tol: Tol,
+    frac: f64,
+    max_oracle_points: usize,
+    convert: fn(&Point<T>) -> Point<O>,
+) -> Result<(), TestCaseError> {
+    check_instance::<T, O>(inst, tol, frac, max_oracle_points, convert).map_err(|e| {
+        TestCaseError::fail(format!("[{}] {e}\ninstance: {}", T::NAME, inst.to_json()))
+    })
+}
+
+fn config(cases: u32) -> ProptestConfig {
+    ProptestConfig {
+        cases,
+        max_shrink_iters: 4096,
+        ..ProptestConfig::default()
+    }
+}
+
+proptest! {
+    #![proptest_config(config(200))]
+
+    #[test]
+    fn f64_positive_definite(inst in positive_definite(0.125), frac in 0.0..1.0f64) {
+        run::<f64, f64>(&inst, TOL_F64, frac, usize::MAX, Point::clone)?;
+    }
+
+    #[test]
+    fn f64_psd_singular(inst in psd_singular(), frac in 0.0..1.0f64) {
+        run::<f64, f64>(&inst, TOL_F64, frac, usize::MAX, Point::clone)?;
+    }
+
+    #[test]
+    fn f64_p_matrix(inst in p_matrix(), frac in 0.0..1.0f64) {
+        run::<f64, f64>(&inst, TOL_F64, frac, usize::MAX, Point::clone)?;
+    }
+}
+
+proptest! {
+    #![proptest_config(config(100))]
+
+    // f32: well-conditioned classes only (M = B B' + S + I/2, diagonally dominant
+    // P-matrices), the oracle in f64 on the same (exactly representable) data.
+    #[test]
+    fn f32_positive_definite(inst in positive_definite(0.5), frac in 0.0..1.0f64) {
+        run::<f32, f64>(&inst, TOL_F32, frac, usize::MAX, via_f64)?;
+    }
+
+    #[test]
+    fn f32_p_matrix(inst in p_matrix_dominant(), frac in 0.0..1.0f64) {
+        run::<f32, f64>(&inst, TOL_F32, frac, usize::MAX, via_f64)?;
+    }
+}
+
+proptest! {
+    #![proptest_config(config(32))]
+
+    // fx128: the oracle in fx128 too (at 6 of the checked points: enumeration in
+    // double-double is slow).
+    #[test]
+    fn f128_positive_definite(inst in positive_definite(0.125), frac in 0.0..1.0f64) {
+        run::<faer::fx128, faer::fx128>(&inst, TOL_F128, frac, 6, Point::clone)?;
+    }
+
+    #[test]
+    fn f128_psd_singular(inst in psd_singular(), frac in 0.0..1.0f64) {
+        run::<faer::fx128, faer::fx128>(&inst, TOL_F128, frac, 6, Point::clone)?;
+    }
+
+    #[test]
+    fn f128_p_matrix(inst in p_matrix(), frac in 0.0..1.0f64) {
+        run::<faer::fx128, faer::fx128>(&inst, TOL_F128, frac, 6, Point::clone)?;
+    }
+}
+
+/// The oracle itself: on a P-matrix it finds exactly one solution, and that
+/// solution satisfies the LCP (checked by the crate's residual, independent of
+/// the enumeration code).
+#[test]
+fn oracle_finds_the_unique_solution_of_a_p_matrix() {
+    let m = diag_dominant(
+        &[0.0, 0.5, -0.25, 0.5, 0.0, 0.5, -0.5, 0.25, 0.0],
+        &[1.0, 0.5, 0.25],
+        3,
+    );
+    let q = [-1.0, 0.5, -0.25];
+    let inst = Instance {
+        m,
+        q: q.to_vec(),
+        d: vec![0.0; 3],
+        free: 0,
+        lambda0: 0.0,
+        lambda_max: None,
+        kind: Kind::PMatrix,
+    };
+    let p = inst.plcp::<f64>();
+    let sols = enumerate(p.m(), p.q(), p.d(), 0, 0.0, 1e-12);
+    assert_eq!(sols.len(), 1);
+    let pt = Point {
+        lambda: 0.0,
+        z: sols[0].z.clone(),
+        w: sols[0].w.clone(),
+        u: Col::zeros(0),
+    };
+    let r = plcp::residual::residual(&p, &pt);
+    assert!(r.worst() < 1e-15, "{r:?}");
+    // and on M = 0, q = -1 there is none
+    let m0 = faer::Mat::<f64>::zeros(1, 1);
+    let q0 = faer::col![-1.0];
+    let d0 = faer::col![0.0];
+    assert!(enumerate(m0.as_ref(), q0.as_ref(), d0.as_ref(), 0, 0.0, 1e-12).is_empty());
+}
