@@ -63,6 +63,7 @@ pub mod problem;
 pub mod reduce;
 pub mod residual;
 pub mod scalar;
+pub mod scaling;
 pub mod settings;
 pub mod tolerance;
 pub mod wolfe;
@@ -81,8 +82,35 @@ pub use settings::{Method, Settings};
 /// outcome of the algorithm itself is a [`Status`] in the returned path.
 pub fn solve<T: Scalar>(problem: &Plcp<T>, settings: &Settings<T>) -> Result<Path<T>, PlcpError> {
     settings.validate(problem.n())?;
-    match settings.method {
-        Method::Lemke => lemke::solve(problem, settings),
-        Method::Wolfe => wolfe::solve(problem, settings),
+    let timer = std::time::Instant::now();
+    let eq = if settings.scaling {
+        scaling::Equilibration::ruiz(problem, 8)
+    } else {
+        scaling::Equilibration {
+            rows: vec![1.0; problem.dim()],
+            cols: vec![1.0; problem.dim()],
+        }
+    };
+    if eq.is_identity() {
+        return match settings.method {
+            Method::Lemke => lemke::solve(problem, settings),
+            Method::Wolfe => wolfe::solve(problem, settings),
+        };
     }
+    let scaled = eq.scale(problem);
+    // the covering vector acts on the rows of w: scale it with them, so the start
+    // phase follows the same path as on the unscaled problem
+    let (p, n) = (problem.free(), problem.n());
+    let mut scaled_settings = settings.clone();
+    scaled_settings.covering = Some(faer::Col::from_fn(n, |i| {
+        let c = settings.covering.as_ref().map_or(T::one(), |c| c[i]);
+        c * T::from_f64(eq.rows[p + i])
+    }));
+    let mut path = match settings.method {
+        Method::Lemke => lemke::solve(&scaled, &scaled_settings)?,
+        Method::Wolfe => wolfe::solve(&scaled, &scaled_settings)?,
+    };
+    eq.unscale(problem, &mut path);
+    path.info.solve_seconds = timer.elapsed().as_secs_f64();
+    Ok(path)
 }

@@ -196,7 +196,9 @@ impl Residual {
     }
     /// The largest of the three.
     pub fn worst(&self) -> f64 {
-        self.equation.max(self.feasibility).max(self.complementarity)
+        self.equation
+            .max(self.feasibility)
+            .max(self.complementarity)
     }
 }
 

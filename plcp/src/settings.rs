@@ -52,6 +52,9 @@ pub struct Settings<T: Scalar> {
     /// A basis whose estimated 1-norm condition number times epsilon exceeds this
     /// stops the path with `IllConditioned`. Default `1e-2`.
     pub max_cond_eps: f64,
+    /// Equilibrate `M` (rows and columns, by powers of two) before pivoting and
+    /// unscale the answer. Default `true`. See [`crate::scaling`].
+    pub scaling: bool,
 }
 
 impl<T: Scalar> Default for Settings<T> {
@@ -64,6 +67,7 @@ impl<T: Scalar> Default for Settings<T> {
             tie_tol_eps: 1e3,
             refactor_period: 50,
             max_cond_eps: 1e-2,
+            scaling: true,
         }
     }
 }
