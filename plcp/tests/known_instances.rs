@@ -279,7 +279,7 @@ fn murty_plcp<T: Scalar>() {
             T::NAME,
             path.message
         );
-        check_path(&p, &path, path_tol::<T>(), 0.3, true, true)
+        check_path(&p, &path, path_tol::<T>(), 0.3, Continuity::All, true)
             .unwrap_or_else(|e| panic!("[{}] Murty PLCP n = {n}: {e}", T::NAME));
         assert_eq!(
             path.breakpoints.len(),
@@ -334,7 +334,7 @@ fn pivot_limit<T: Scalar>() {
     // what was traced is right
     let pt = path.at(path.lambda_reached).unwrap();
     assert!(residual(&p, &pt).worst() <= path_tol::<T>().residual);
-    check_path(&p, &path, path_tol::<T>(), 0.5, true, true).unwrap();
+    check_path(&p, &path, path_tol::<T>(), 0.5, Continuity::All, true).unwrap();
     // and the LCP form
     let l = lcp::<T>(&m, &murty_q(n));
     let sol = plcp::solve_lcp(&l, &settings).unwrap();
@@ -399,7 +399,7 @@ fn kostreva_tie_at_breakpoint<T: Scalar>() {
             T::NAME,
             path.message
         );
-        check_path(&p, &path, path_tol::<T>(), 0.4, true, true)
+        check_path(&p, &path, path_tol::<T>(), 0.4, Continuity::All, true)
             .unwrap_or_else(|e| panic!("[{}] {e}", T::NAME));
         check_no_repeated_basis(&path, 3);
         for bp in &path.breakpoints {
@@ -432,7 +432,7 @@ fn kostreva_tie_at_start<T: Scalar>() {
             T::NAME,
             path.message
         );
-        check_path(&p, &path, path_tol::<T>(), 0.4, true, true)
+        check_path(&p, &path, path_tol::<T>(), 0.4, Continuity::All, true)
             .unwrap_or_else(|e| panic!("[{}] {e}", T::NAME));
         check_no_repeated_basis(&path, 3);
         assert_close("end z", &path.end.z, &[2.0; 3], tol::<T>());
@@ -453,7 +453,7 @@ fn kostreva_start_phase<T: Scalar>() {
             T::NAME,
             path.message
         );
-        check_path(&p, &path, path_tol::<T>(), 0.4, true, true)
+        check_path(&p, &path, path_tol::<T>(), 0.4, Continuity::All, true)
             .unwrap_or_else(|e| panic!("[{}] {e}", T::NAME));
         assert!(path.info.start_pivots > 0, "q < 0 needs the start phase");
         for l in [0.0, 1.0, 2.0] {
@@ -638,7 +638,7 @@ fn unbounded_and_reached<T: Scalar>() {
         path.message
     );
     assert!(path.status.is_success());
-    check_path(&p, &path, path_tol::<T>(), 0.5, true, true).unwrap();
+    check_path(&p, &path, path_tol::<T>(), 0.5, Continuity::All, true).unwrap();
     assert_eq!(path.breakpoints.len(), 1);
     let bp = &path.breakpoints[0];
     assert!((bp.lambda.to_f64() - 1.0).abs() <= tol::<T>());

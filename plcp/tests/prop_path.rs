@@ -18,8 +18,10 @@
 //! must be below `Tol::residual`; every point must be a complementary basic
 //! solution found by enumerating the `2^n` bases, equal to the unique solution
 //! (`z`) for P-matrices and positive definite `M`, and with the unique `w` for
-//! symmetric PSD `M`. The path is continuous in `w` at every breakpoint, and in `z`
-//! where the solution is unique. A path that stops (secondary ray, infeasible)
+//! symmetric PSD `M`. The path is continuous in `z` and `w` at every breakpoint
+//! where the solution is unique, in `w` for symmetric PSD `M`; a nonsymmetric PSD
+//! `M` may have a whole segment of solutions at one `L` (`M = [[0, a], [-a, 0]]`,
+//! `w` jumps), so there both sides of a breakpoint are checked as solutions. A path that stops (secondary ray, infeasible)
 //! must be right to: enumeration finds no basic solution just beyond the stop.
 //!
 //! Tolerances (relative):
@@ -36,7 +38,7 @@ use common::*;
 use faer::Col;
 use plcp::{Path, Plcp, Point, Scalar, Settings, Status};
 use proptest::prelude::*;
-use proptest::test_runner::TestCaseError;
+use proptest::test_runner::{FileFailurePersistence, TestCaseError};
 
 const TOL_F64: Tol = Tol {
     residual: 1e-11,
@@ -237,7 +239,7 @@ fn check_instance<T: Scalar, O: Scalar>(
     if inst.lambda_max.is_none() && path.status == Status::Reached {
         return Err("Reached with an infinite lambda_max".into());
     }
-    let points = check_path(&problem, &path, tol, frac, kind.unique_z(), true)?;
+    let points = check_path(&problem, &path, tol, frac, kind.continuity(), true)?;
     // the oracle at the checked points
     let step = (points.len() / max_oracle_points.max(1)).max(1);
     for pt in points.iter().step_by(step) {
@@ -296,6 +298,11 @@ fn config(cases: u32) -> ProptestConfig {
     ProptestConfig {
         cases,
         max_shrink_iters: 4096,
+        // integration tests have no lib.rs beside them: name the file (relative to
+        // the package root, the working directory of `cargo test`)
+        failure_persistence: Some(Box::new(FileFailurePersistence::Direct(
+            "proptest-regressions/prop_path.txt",
+        ))),
         ..ProptestConfig::default()
     }
 }

@@ -598,11 +598,37 @@ pub fn sample_lambdas<T: Scalar>(path: &Path<T>, frac: f64) -> Vec<T> {
     out
 }
 
+/// What must be continuous at a breakpoint.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Continuity {
+    /// `z`, `w` and `u`: the solution is unique (P-matrix, positive definite).
+    All,
+    /// `w` only: symmetric PSD `M` (`w` unique, `z` not).
+    W,
+    /// Nothing: a nonsymmetric PSD `M` may have a segment of solutions at one
+    /// `L` (e.g. `M = [[0, a], [-a, 0]]`), which the path crosses at a
+    /// breakpoint; both sides are checked as solutions instead.
+    None,
+}
+
+impl Kind {
+    /// What a path of this class must be continuous in.
+    pub fn continuity(self) -> Continuity {
+        if self.unique_z() {
+            Continuity::All
+        } else if self.unique_w() {
+            Continuity::W
+        } else {
+            Continuity::None
+        }
+    }
+}
+
 /// Checks the shape of a path (ordering, contiguity, complementary bases, values
 /// consistent with the bases, status and end) and the residual at the ends of
-/// every segment and at interior points; the path must be continuous in `w`
-/// at every breakpoint, and in `z`, `u` too when `continuous_z`. `monotone_l`:
-/// `L` never decreases (no turning points: true for P-matrices and PSD `M`).
+/// every segment and at interior points; the path must be continuous at every
+/// breakpoint as `continuity` says. `monotone_l`: `L` never decreases (no
+/// turning points: true for P-matrices and PSD `M`).
 ///
 /// Returns the points checked.
 pub fn check_path<T: Scalar>(
@@ -610,7 +636,7 @@ pub fn check_path<T: Scalar>(
     path: &Path<T>,
     tol: Tol,
     frac: f64,
-    continuous_z: bool,
+    continuity: Continuity,
     monotone_l: bool,
 ) -> Result<Vec<Point<T>>, String> {
     let n = problem.n();
@@ -740,14 +766,14 @@ pub fn check_path<T: Scalar>(
             let a = prev.eval(prev.lambda_to);
             let b = s.eval(s.lambda_from);
             let dw = rel_dist(a.w.as_ref(), b.w.as_ref());
-            if dw > tol.forward {
+            if continuity != Continuity::None && dw > tol.forward {
                 return Err(format!(
                     "w jumps by {dw:e} at the breakpoint L = {} between segments {} and {k}",
                     s.lambda_from.to_f64(),
                     k - 1
                 ));
             }
-            if continuous_z {
+            if continuity == Continuity::All {
                 let dz =
                     rel_dist(a.z.as_ref(), b.z.as_ref()).max(rel_dist(a.u.as_ref(), b.u.as_ref()));
                 if dz > tol.forward {
@@ -839,8 +865,25 @@ pub fn check_path<T: Scalar>(
                 tol.residual
             ));
         }
-        if !near(path.end.lambda, path.lambda_reached) {
-            return Err("end.lambda != lambda_reached".into());
+        if path.status == Status::UnboundedRay {
+            // the end is where the ray starts; lambda_reached is infinite
+            let last = path.segments.last().expect("checked above");
+            if !near(path.end.lambda, last.lambda_from) {
+                return Err(format!(
+                    "UnboundedRay: end.lambda = {} is not the start {} of the last segment",
+                    path.end.lambda.to_f64(),
+                    last.lambda_from.to_f64()
+                ));
+            }
+            if path.lambda_reached.to_f64() < path.end.lambda.to_f64() {
+                return Err("UnboundedRay: lambda_reached below the ray's start".into());
+            }
+        } else if !near(path.end.lambda, path.lambda_reached) {
+            return Err(format!(
+                "end.lambda = {} != lambda_reached = {}",
+                path.end.lambda.to_f64(),
+                path.lambda_reached.to_f64()
+            ));
         }
         points.push(path.end.clone());
         if path.info.residual.worst() > tol.residual {
