@@ -526,10 +526,19 @@ pub fn lcp_status(status: Status) -> &'static str {
     }
 }
 
+/// `w = q + M z`, recomputed in `T` (the Siconos measure does the same).
+fn fresh_w<T: Scalar>(lcp: &Lcp<T>, z: &Col<T>) -> Col<T> {
+    let (m, q) = (lcp.m(), lcp.q());
+    Col::from_fn(lcp.n(), |i| {
+        (0..lcp.n()).fold(q[i], |acc, j| acc + m[(i, j)] * z[j])
+    })
+}
+
 /// The JSON report of a plain LCP (one line): `status` ([`lcp_status`]), `n`,
 /// `z`, `w`, `pivots`, `residual` (as in [`path_json`]: the solver's record and
 /// a fresh evaluation of `(z, w)`), `siconos_error`
-/// ([`super::siconos::siconos_error`]), `timing` (`solve_seconds`), `info`,
+/// ([`super::siconos::siconos_error`] of `z` and `w = q + M z` recomputed from
+/// `z`, as Siconos does), `timing` (`solve_seconds`), `info`,
 /// `message`. Non-finite numbers are `null`.
 pub fn lcp_json<T: Scalar>(lcp: &Lcp<T>, sol: &LcpSolution<T>, solve_seconds: f64) -> String {
     let n = lcp.n();
@@ -557,7 +566,7 @@ pub fn lcp_json<T: Scalar>(lcp: &Lcp<T>, sol: &LcpSolution<T>, solve_seconds: f6
         siconos_error: f(super::siconos::siconos_error(
             lcp.q(),
             sol.z.as_ref(),
-            sol.w.as_ref(),
+            fresh_w(lcp, &sol.z).as_ref(),
         )),
         timing: TimingOut {
             solve_seconds: f(solve_seconds),

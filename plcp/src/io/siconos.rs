@@ -419,10 +419,10 @@ pub fn siconos_error<T: Scalar>(q: ColRef<'_, T>, z: ColRef<'_, T>, w: ColRef<'_
     let mut qq = T::zero();
     for i in 0..z.nrows() {
         let r = z[i] - (z[i] - w[i]).max(T::zero());
-        e = e + r * r;
+        e += r * r;
     }
     for i in 0..q.nrows() {
-        qq = qq + q[i] * q[i];
+        qq += q[i] * q[i];
     }
     let e = e.sqrt();
     let qn = qq.sqrt();

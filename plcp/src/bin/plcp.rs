@@ -1,0 +1,223 @@
+//! The plcp command line.
+//!
+//! ```text
+//! plcp solve FILE.json [--method lemke|wolfe] [--precision f32|f64|f128] [--lambda-max X] [--at L1,L2,...]
+//! plcp lcp FILE.dat [--precision f32|f64|f128]
+//! ```
+//!
+//! `solve` reads a PLCP in plcp's JSON format ([`plcp::io::json`]) and prints
+//! its solution path as one line of JSON ([`plcp::io::json::path_json`]);
+//! `--lambda-max` overrides the file's (`inf` for infinity). `lcp` reads a
+//! Siconos `.dat` file ([`plcp::io::siconos`]) and prints the solution of the
+//! LCP ([`plcp::io::json::lcp_json`]).
+//!
+//! Exit codes: 0 when a report was printed (read its `status`), 2 for bad
+//! input of any kind (command line, file, data), 3 for an internal error (a
+//! panic). On a non-zero exit, stderr holds exactly one line naming the problem
+//! and stdout is empty.
+
+use clap::{ColorChoice, Parser, Subcommand};
+use plcp::io::json::{lambda_max_from_f64, lcp_json, path_json, read_plcp};
+use plcp::io::siconos::read_lcp;
+use plcp::{Method, PlcpError, Precision, Scalar, Settings};
+use std::io::Write;
+use std::path::PathBuf;
+use std::process::ExitCode;
+use std::sync::Mutex;
+use std::time::Instant;
+
+#[derive(Parser)]
+#[command(
+    name = "plcp",
+    version,
+    color = ColorChoice::Never,
+    about = "Parametric linear complementarity problems: the solution path of w = q + L d + M z"
+)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Trace the solution path of a PLCP given in plcp's JSON format.
+    Solve {
+        /// The problem file: {"M": [[...], ...], "q": [...], "d": [...], "lambda_max": X or null, "free": p}.
+        file: PathBuf,
+        /// The algorithm: lemke or wolfe.
+        #[arg(long, default_value = "lemke")]
+        method: Method,
+        /// The working precision: f32, f64 or f128 (double-double).
+        #[arg(long, default_value = "f64")]
+        precision: Precision,
+        /// End of the parameter range, overriding the file's (a number, or inf).
+        #[arg(long, value_parser = parse_lambda_max, allow_hyphen_values = true)]
+        lambda_max: Option<f64>,
+        /// Parameter values at which to report the solution, comma-separated.
+        #[arg(long, value_delimiter = ',', value_parser = parse_at, allow_hyphen_values = true)]
+        at: Vec<f64>,
+    },
+    /// Solve a plain LCP given in the Siconos .dat format (dense or sparse-block).
+    Lcp {
+        /// The .dat file.
+        file: PathBuf,
+        /// The working precision: f32, f64 or f128 (double-double).
+        #[arg(long, default_value = "f64")]
+        precision: Precision,
+    },
+}
+
+fn parse_lambda_max(s: &str) -> Result<f64, String> {
+    match s.trim().parse::<f64>() {
+        Ok(v) if !v.is_nan() && v != f64::NEG_INFINITY => Ok(v),
+        _ => Err(format!("'{s}' is not a number or inf")),
+    }
+}
+
+fn parse_at(s: &str) -> Result<f64, String> {
+    match s.trim().parse::<f64>() {
+        Ok(v) if v.is_finite() => Ok(v),
+        _ => Err(format!("'{s}' is not a finite number")),
+    }
+}
+
+/// Bad input: exit code 2 and this one line.
+struct InputError(String);
+
+impl<E: std::fmt::Display> From<E> for InputError {
+    fn from(e: E) -> Self {
+        InputError(e.to_string())
+    }
+}
+
+/// Names the file in a data error (syntax and I/O errors name it already).
+fn in_file(file: &std::path::Path) -> impl Fn(PlcpError) -> InputError + '_ {
+    move |e| match e {
+        PlcpError::Parse { .. } | PlcpError::Io { .. } => InputError(e.to_string()),
+        other => InputError(format!("{}: {other}", file.display())),
+    }
+}
+
+fn solve<T: Scalar>(
+    file: &std::path::Path,
+    method: Method,
+    lambda_max: Option<f64>,
+    at: &[f64],
+) -> Result<String, InputError> {
+    let mut problem = read_plcp::<T>(file).map_err(in_file(file))?;
+    if lambda_max.is_some() {
+        let lm = lambda_max_from_f64::<T>(lambda_max)?;
+        let lambda0 = problem.lambda0();
+        problem = problem.with_range(lambda0, lm)?;
+    }
+    let settings = Settings::<T>::with_method(method);
+    let start = Instant::now();
+    let path = plcp::solve(&problem, &settings)?;
+    let seconds = start.elapsed().as_secs_f64();
+    Ok(path_json(&problem, &path, at, seconds))
+}
+
+fn lcp<T: Scalar>(file: &std::path::Path) -> Result<String, InputError> {
+    let problem = read_lcp::<T>(file).map_err(in_file(file))?;
+    let settings = Settings::<T>::default();
+    let start = Instant::now();
+    let solution = plcp::solve_lcp(&problem, &settings)?;
+    let seconds = start.elapsed().as_secs_f64();
+    Ok(lcp_json(&problem, &solution, seconds))
+}
+
+fn run(command: Command) -> Result<String, InputError> {
+    match command {
+        Command::Solve {
+            file,
+            method,
+            precision,
+            lambda_max,
+            at,
+        } => match precision {
+            Precision::F32 => solve::<f32>(&file, method, lambda_max, &at),
+            Precision::F64 => solve::<f64>(&file, method, lambda_max, &at),
+            Precision::F128 => solve::<faer::fx128>(&file, method, lambda_max, &at),
+        },
+        Command::Lcp { file, precision } => match precision {
+            Precision::F32 => lcp::<f32>(&file),
+            Precision::F64 => lcp::<f64>(&file),
+            Precision::F128 => lcp::<faer::fx128>(&file),
+        },
+    }
+}
+
+/// Joins the first paragraph of a (possibly multi-line) message into one line.
+fn one_line(s: &str) -> String {
+    let para: Vec<&str> = s
+        .trim_start()
+        .lines()
+        .take_while(|l| !l.trim().is_empty())
+        .map(str::trim)
+        .collect();
+    para.join(" ")
+}
+
+/// The message of the last panic, recorded by the hook (which prints nothing).
+static PANIC: Mutex<Option<String>> = Mutex::new(None);
+
+fn main() -> ExitCode {
+    let cli = match Cli::try_parse() {
+        Ok(cli) => cli,
+        Err(e) => {
+            use clap::error::ErrorKind;
+            if matches!(e.kind(), ErrorKind::DisplayHelp | ErrorKind::DisplayVersion) {
+                print!("{e}");
+                return ExitCode::SUCCESS;
+            }
+            if e.kind() == ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand {
+                eprintln!("error: missing command: expected 'solve FILE.json' or 'lcp FILE.dat' (see plcp --help)");
+                return ExitCode::from(2);
+            }
+            let line = one_line(&e.to_string());
+            let line = line.strip_prefix("error: ").unwrap_or(&line);
+            eprintln!("error: {line}");
+            return ExitCode::from(2);
+        }
+    };
+    std::panic::set_hook(Box::new(|info| {
+        let payload = info.payload();
+        let msg = payload
+            .downcast_ref::<&str>()
+            .map(|s| s.to_string())
+            .or_else(|| payload.downcast_ref::<String>().cloned())
+            .unwrap_or_else(|| "(no message)".into());
+        let at = info
+            .location()
+            .map(|l| format!(" at {}:{}", l.file(), l.line()))
+            .unwrap_or_default();
+        if let Ok(mut slot) = PANIC.lock() {
+            slot.get_or_insert(format!("{msg}{at}"));
+        }
+    }));
+    let result = std::panic::catch_unwind(move || run(cli.command));
+    match result {
+        Ok(Ok(json)) => {
+            let mut out = std::io::stdout().lock();
+            // A closed pipe is not worth a panic or a second message.
+            let _ = writeln!(out, "{json}").and_then(|_| out.flush());
+            ExitCode::SUCCESS
+        }
+        Ok(Err(InputError(msg))) => {
+            eprintln!("error: {}", one_line(&msg.replace('\n', " ")));
+            ExitCode::from(2)
+        }
+        Err(_) => {
+            let msg = PANIC
+                .lock()
+                .ok()
+                .and_then(|mut s| s.take())
+                .unwrap_or_else(|| "(no message)".into());
+            eprintln!(
+                "internal error: the solver panicked: {}",
+                msg.replace('\n', " ")
+            );
+            ExitCode::from(3)
+        }
+    }
+}
