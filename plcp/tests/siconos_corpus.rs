@@ -302,11 +302,14 @@ fn corpus_f64() {
     }));
 }
 
+/// fx128 (eps = 4.9e-32): tighter than f64. The error is computed in fx128
+/// (the corpus gives 1e-31 or less); the known solutions are compared after
+/// rounding `z` to f64, hence 1e-12 there.
 #[test]
 fn corpus_fx128() {
     check(run_corpus::<faer::fx128>(&Spec {
-        error_tol: 1e-12,
-        solution_tol: 1e-9,
+        error_tol: 1e-24,
+        solution_tol: 1e-12,
         exceptions: &[],
     }));
 }
