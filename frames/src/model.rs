@@ -582,19 +582,20 @@ impl Scene {
                 return cx.err(s.node.span(), format!("support \"{nid}\" node"), format!("a second [[support]] for node \"{nid}\" (list every fixed component in one)"));
             }
             for c in s.fix.get_ref() {
-                let k =
-                    match c.get_ref().as_str() {
-                        "x" => 0,
-                        "y" => 1,
-                        "rz" => 2,
-                        other => return cx.err(
+                let k = match c.get_ref().as_str() {
+                    "x" => 0,
+                    "y" => 1,
+                    "rz" => 2,
+                    other => {
+                        return cx.err(
                             c.span(),
                             format!("support \"{nid}\" fix"),
                             format!(
                                 "unknown component \"{other}\": expected \"x\", \"y\" or \"rz\""
                             ),
-                        ),
-                    };
+                        )
+                    }
+                };
                 frame.nodes[i].fixed[k] = true;
             }
         }

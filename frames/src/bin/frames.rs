@@ -1,0 +1,139 @@
+//! The frames command line: `frames run SCENE.toml [...]`, `frames export SCENE.toml`.
+//!
+//! Bad input (a scene error, an unknown option, Lemke on an indeterminate
+//! frame) ends with exit code 2 and one line naming what is wrong.
+
+use clap::{Parser, Subcommand};
+use frames::{Analysis, AnalysisOptions, FramesError, Scene, SolveOptions};
+use plcp::{Method, Precision};
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+#[derive(Parser)]
+#[command(
+    name = "frames",
+    version,
+    about = "Dynamic response of rigid-plastic planar frames under a monotone pulse: system (9) solved as a parametric LCP"
+)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Analyse a scene: critical Lambda values, hinges, intervals, response.
+    Run {
+        /// The scene file (TOML).
+        scene: PathBuf,
+        /// Print the JSON document instead of the text report.
+        #[arg(long)]
+        json: bool,
+        /// Write SVG plots and CSV tables to this directory.
+        #[arg(long, value_name = "DIR")]
+        plots: Option<PathBuf>,
+        /// wolfe (long form, any frame) or lemke (Schur reduction, statically determinate frames).
+        #[arg(long, default_value = "wolfe", value_parser = parse_method)]
+        method: Method,
+        /// Working precision of the solve: f32, f64 or f128.
+        #[arg(long, default_value = "f64", value_parser = parse_precision)]
+        precision: Precision,
+        /// Largest Lambda to trace (default: infinity).
+        #[arg(long, value_name = "X")]
+        lambda_max: Option<f64>,
+        /// End time of the time response (default: Lambda reaches 1.5 x the last critical value).
+        #[arg(long, value_name = "T")]
+        t_end: Option<f64>,
+    },
+    /// Print the mixed PLCP of system (9) as plcp's JSON input.
+    Export {
+        /// The scene file (TOML).
+        scene: PathBuf,
+        /// lambda_max to write (default: null, infinity).
+        #[arg(long, value_name = "X")]
+        lambda_max: Option<f64>,
+    },
+}
+
+fn parse_method(s: &str) -> Result<Method, String> {
+    s.parse()
+}
+
+fn parse_precision(s: &str) -> Result<Precision, String> {
+    s.parse()
+}
+
+fn run(cli: Cli) -> Result<(), FramesError> {
+    match cli.command {
+        Command::Run {
+            scene,
+            json,
+            plots,
+            method,
+            precision,
+            lambda_max,
+            t_end,
+        } => {
+            let scene = Scene::from_file(&scene)?;
+            let options = AnalysisOptions {
+                solve: SolveOptions {
+                    method,
+                    precision,
+                    lambda_max,
+                },
+                t_end,
+                ..AnalysisOptions::default()
+            };
+            let analysis = Analysis::run(scene, &options)?;
+            if let Some(dir) = plots {
+                let files = frames::plot::write_all(&analysis, &dir)?;
+                if !json {
+                    for f in files {
+                        eprintln!("wrote {}", f.display());
+                    }
+                }
+            }
+            if json {
+                println!(
+                    "{}",
+                    serde_json::to_string_pretty(&analysis.to_json()).unwrap_or_default()
+                );
+            } else {
+                print!("{}", analysis.to_text());
+            }
+            Ok(())
+        }
+        Command::Export { scene, lambda_max } => {
+            if let Some(l) = lambda_max {
+                if !(l > 0.0) {
+                    return Err(FramesError::Invalid {
+                        what: "lambda_max".into(),
+                        why: format!("must be positive, got {l}"),
+                    });
+                }
+            }
+            let scene = Scene::from_file(&scene)?;
+            let system = frames::System::assemble(&scene.frame);
+            println!(
+                "{}",
+                serde_json::to_string(&system.plcp_json(lambda_max)).unwrap_or_default()
+            );
+            Ok(())
+        }
+    }
+}
+
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    match run(cli) {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            let line = e.to_string().replace('\n', " ");
+            eprintln!("error: {line}");
+            match e {
+                FramesError::Io { .. } if line.contains("write") => ExitCode::from(1),
+                _ => ExitCode::from(2),
+            }
+        }
+    }
+}

@@ -1,0 +1,504 @@
+//! Reading the path as hinge events: which critical sections reach yield,
+//! start to flow, stop accelerating or unload, at which `Lambda`, merged into
+//! the physical hinges at the nodes.
+//!
+//! Definitions (system9-notes, fact 5). A section is *at yield* when one of
+//! its plastic potentials `y*` is zero; it *accelerates* when a plastic
+//! multiplier acceleration `x*_dd` is positive; it *flows* once it has
+//! accelerated (its plastic rate, the time integral of `x*_dd`, is positive).
+//! A flowing section whose `x*_dd` returns to zero while it stays at yield
+//! keeps rotating at a constant rate: that is `flow_stopped`, not a
+//! deactivation. A flowing section that leaves yield is `unloaded`: a real
+//! deactivation, against the paper's claim for this loading class; it is
+//! reported, never hidden.
+//!
+//! States are read on each piece at an interior point, with a relative
+//! tolerance suited to the working precision.
+//!
+//! **Tied sections.** Where exactly two sections meet at a node whose rotation
+//! is free, without rotary inertia or applied moment, node equilibrium makes
+//! their moments equal: they yield together and the split of plastic rotation
+//! between them is not unique (fact 4). They form one group, the physical
+//! hinge at the node, and events are reported per group.
+//!
+//! **Stress that is not unique.** While a statically indeterminate frame (or
+//! its rigid part) does not move, the member forces are not unique (fact 6),
+//! so which section reaches yield first is not a property of the problem.
+//! Before the first flow nothing is reported; after it, a section reaching
+//! yield is reported only where the stress is unique on the piece (`A^T` with
+//! the moments of the accelerating sections pinned has full column rank) or
+//! where the section itself accelerates (its yield is then forced).
+
+use crate::assemble::{End, MemberForce, Sign, System};
+use crate::kernel::null_space;
+use crate::model::Frame;
+use crate::solve::Piece;
+use faer::Mat;
+
+/// What happened to a physical hinge at a breakpoint.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum EventKind {
+    /// Reached yield (`y* = 0`).
+    Yielded,
+    /// Started to accelerate (`x*_dd` became positive).
+    FlowStarted,
+    /// Stopped accelerating while staying at yield: rotates on at a constant rate.
+    FlowStopped,
+    /// Left yield after having flowed: a deactivation.
+    Unloaded,
+}
+
+impl EventKind {
+    /// The JSON key: `yielded`, `flow_started`, `flow_stopped`, `unloaded`.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            EventKind::Yielded => "yielded",
+            EventKind::FlowStarted => "flow_started",
+            EventKind::FlowStopped => "flow_stopped",
+            EventKind::Unloaded => "unloaded",
+        }
+    }
+}
+
+/// One event of one physical hinge.
+#[derive(Clone, Debug, PartialEq)]
+pub struct HingeEvent {
+    /// What happened.
+    pub kind: EventKind,
+    /// The group (physical hinge), index into [`Reading::groups`].
+    pub group: usize,
+    /// The section of the group the event was read from.
+    pub section: usize,
+    /// The sign of the yield mode involved.
+    pub sign: Sign,
+}
+
+/// A set of critical sections that act as one physical hinge at a node.
+#[derive(Clone, Debug, PartialEq)]
+pub struct HingeGroup {
+    /// The node.
+    pub node: usize,
+    /// The sections (one, or two tied ones).
+    pub sections: Vec<usize>,
+}
+
+/// All events at one `Lambda`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct EventPoint {
+    /// The critical value of the load parameter.
+    pub lambda: f64,
+    /// The events, in group order within each kind.
+    pub events: Vec<HingeEvent>,
+    /// Whether the member forces are unique just after this point.
+    pub stress_unique: bool,
+}
+
+impl EventPoint {
+    /// The events of one kind.
+    pub fn of(&self, kind: EventKind) -> impl Iterator<Item = &HingeEvent> {
+        self.events.iter().filter(move |e| e.kind == kind)
+    }
+}
+
+/// An interval of `Lambda` with one mechanism.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Interval {
+    /// Start.
+    pub lambda_from: f64,
+    /// End (`f64::INFINITY` if unbounded).
+    pub lambda_to: f64,
+    /// The piece of the path that holds the affine solution on this interval.
+    pub piece: usize,
+    /// True before the first plastic flow (the frame does not deform).
+    pub rigid: bool,
+    /// Groups that accelerate (`x*_dd > 0`).
+    pub accelerating: Vec<usize>,
+    /// Groups that flowed before and rotate at a constant rate (at yield, `x*_dd = 0`).
+    pub constant_rate: Vec<usize>,
+    /// Groups at yield (reported only where the stress is unique or forced).
+    pub at_yield: Vec<usize>,
+}
+
+/// A physical hinge in order of formation.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Hinge {
+    /// The group.
+    pub group: usize,
+    /// The node.
+    pub node: usize,
+    /// `Lambda` at which the hinge started to flow.
+    pub lambda: f64,
+    /// Sagging or hogging.
+    pub sign: Sign,
+    /// The section that flowed first.
+    pub section: usize,
+}
+
+/// The path read as hinge events.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Reading {
+    /// Physical hinges (groups of tied sections), by node.
+    pub groups: Vec<HingeGroup>,
+    /// The group of each section (`None` for sections left out of the system).
+    pub group_of: Vec<Option<usize>>,
+    /// Critical values of `Lambda` with their events; the first is the limit load.
+    pub breakpoints: Vec<EventPoint>,
+    /// Intervals between them, starting with the rigid phase `[0, first]`.
+    pub intervals: Vec<Interval>,
+    /// Hinges in order of formation.
+    pub hinges: Vec<Hinge>,
+}
+
+impl Reading {
+    /// `Lambda` of the first plastic flow: the static collapse load (fact 3).
+    pub fn collapse_load(&self) -> Option<f64> {
+        self.breakpoints.first().map(|b| b.lambda)
+    }
+    /// All `unloaded` events (should be none for this loading class).
+    pub fn deactivations(&self) -> Vec<(f64, &HingeEvent)> {
+        self.breakpoints
+            .iter()
+            .flat_map(|b| b.of(EventKind::Unloaded).map(move |e| (b.lambda, e)))
+            .collect()
+    }
+}
+
+/// Per-piece states of every section.
+#[derive(Clone, Debug)]
+struct State {
+    /// `Some(sign)` if the section is at yield.
+    yield_sign: Vec<Option<Sign>>,
+    /// `Some(sign)` if the section accelerates.
+    acc_sign: Vec<Option<Sign>>,
+    unique: bool,
+}
+
+fn groups(frame: &Frame, system: &System) -> (Vec<HingeGroup>, Vec<Option<usize>>) {
+    let kept: Vec<bool> = (0..system.sections.len())
+        .map(|k| system.moment_index(k).is_some())
+        .collect();
+    let mut at_node: Vec<Vec<usize>> = vec![Vec::new(); frame.nodes.len()];
+    for (k, s) in system.sections.iter().enumerate() {
+        if kept[k] {
+            at_node[s.node].push(k);
+        }
+    }
+    let mut gs = Vec::new();
+    let mut group_of = vec![None; system.sections.len()];
+    for (i, secs) in at_node.iter().enumerate() {
+        let n = &frame.nodes[i];
+        let tied = secs.len() == 2 && !n.fixed[2] && n.inertia == 0.0 && n.load[2] == 0.0;
+        let parts: Vec<Vec<usize>> = if tied {
+            vec![secs.clone()]
+        } else {
+            secs.iter().map(|&k| vec![k]).collect()
+        };
+        for p in parts {
+            for &k in &p {
+                group_of[k] = Some(gs.len());
+            }
+            gs.push(HingeGroup {
+                node: i,
+                sections: p,
+            });
+        }
+    }
+    (gs, group_of)
+}
+
+/// Whether the member forces are unique once the moments of `pinned` sections are fixed.
+fn stress_unique(system: &System, pinned: &[usize]) -> bool {
+    if system.is_determinate() {
+        return true;
+    }
+    let (nb, ns) = (system.coordinates.len(), system.forces.len());
+    let rows: Vec<usize> = pinned
+        .iter()
+        .filter_map(|&k| system.moment_index(k))
+        .collect();
+    let m = Mat::from_fn(nb + rows.len(), ns, |i, j| {
+        if i < nb {
+            system.a[(j, i)]
+        } else if rows[i - nb] == j {
+            1.0
+        } else {
+            0.0
+        }
+    });
+    null_space(&m).0 == ns
+}
+
+/// Reads the pieces of a path as hinge events.
+pub fn read(frame: &Frame, system: &System, pieces: &[Piece], tolerance: f64) -> Reading {
+    let (groups, group_of) = groups(frame, system);
+    let ns = system.sections.len();
+    let zscale = pieces
+        .iter()
+        .flat_map(|p| p.z(p.representative()))
+        .fold(0.0f64, |a, v| a.max(v.abs()))
+        .max(f64::MIN_POSITIVE);
+    let mut cache: std::collections::HashMap<Vec<usize>, bool> = std::collections::HashMap::new();
+    let states: Vec<State> = pieces
+        .iter()
+        .map(|p| {
+            let l = p.representative();
+            let (z, w) = (p.z(l), p.w(l));
+            let mut yield_sign = vec![None; ns];
+            let mut acc_sign = vec![None; ns];
+            for (k, mode) in system.modes.iter().enumerate() {
+                let s = mode.section;
+                if w[k] <= tolerance * system.capacities[k] {
+                    yield_sign[s] = Some(mode.sign);
+                }
+                if z[k] > tolerance * zscale {
+                    acc_sign[s] = Some(mode.sign);
+                }
+            }
+            let pinned: Vec<usize> = (0..ns).filter(|&s| acc_sign[s].is_some()).collect();
+            let unique = *cache
+                .entry(pinned.clone())
+                .or_insert_with(|| stress_unique(system, &pinned));
+            State {
+                yield_sign,
+                acc_sign,
+                unique,
+            }
+        })
+        .collect();
+    let group_state = |st: &State, g: usize| -> (Option<(usize, Sign)>, Option<(usize, Sign)>) {
+        let y = groups[g]
+            .sections
+            .iter()
+            .find_map(|&k| st.yield_sign[k].map(|s| (k, s)));
+        let a = groups[g]
+            .sections
+            .iter()
+            .find_map(|&k| st.acc_sign[k].map(|s| (k, s)));
+        (y, a)
+    };
+    let ng = groups.len();
+    let first_flow = states
+        .iter()
+        .position(|s| s.acc_sign.iter().any(Option::is_some));
+    let mut breakpoints = Vec::new();
+    let mut intervals = Vec::new();
+    let mut hinges = Vec::new();
+    let Some(kc) = first_flow else {
+        // rigid (or moving without hinges) over the whole traced range
+        if let Some(p) = pieces.first() {
+            intervals.push(Interval {
+                lambda_from: p.lambda_from,
+                lambda_to: pieces.last().map(|q| q.lambda_to).unwrap_or(p.lambda_to),
+                piece: 0,
+                rigid: true,
+                accelerating: vec![],
+                constant_rate: vec![],
+                at_yield: vec![],
+            });
+        }
+        return Reading {
+            groups,
+            group_of,
+            breakpoints,
+            intervals,
+            hinges,
+        };
+    };
+    if kc > 0 {
+        intervals.push(Interval {
+            lambda_from: pieces[0].lambda_from,
+            lambda_to: pieces[kc].lambda_from,
+            piece: 0,
+            rigid: true,
+            accelerating: vec![],
+            constant_rate: vec![],
+            at_yield: vec![],
+        });
+    }
+    let mut reported_yield = vec![false; ng];
+    let mut flowed = vec![false; ng];
+    let mut started = vec![false; ng];
+    let mut prev_acc: Vec<Option<(usize, Sign)>> = vec![None; ng];
+    let mut prev_yield: Vec<Option<(usize, Sign)>> = vec![None; ng];
+    for k in kc..pieces.len() {
+        let st = &states[k];
+        let lambda = pieces[k].lambda_from;
+        let mut events = Vec::new();
+        let mut accelerating = Vec::new();
+        let mut constant_rate = Vec::new();
+        let mut at_yield = Vec::new();
+        let mut now_yield = vec![None; ng];
+        let mut now_acc = vec![None; ng];
+        for g in 0..ng {
+            let (y, a) = group_state(st, g);
+            now_yield[g] = y;
+            now_acc[g] = a;
+            if let Some((sec, sign)) = y {
+                if !reported_yield[g] && (st.unique || a.is_some()) {
+                    events.push(HingeEvent {
+                        kind: EventKind::Yielded,
+                        group: g,
+                        section: sec,
+                        sign,
+                    });
+                    reported_yield[g] = true;
+                }
+            } else {
+                if flowed[g] {
+                    if let Some((sec, sign)) = prev_yield[g].or(prev_acc[g]) {
+                        events.push(HingeEvent {
+                            kind: EventKind::Unloaded,
+                            group: g,
+                            section: sec,
+                            sign,
+                        });
+                    }
+                }
+                reported_yield[g] = false;
+            }
+            match (prev_acc[g], a) {
+                (None, Some((sec, sign))) => {
+                    events.push(HingeEvent {
+                        kind: EventKind::FlowStarted,
+                        group: g,
+                        section: sec,
+                        sign,
+                    });
+                    if !started[g] {
+                        started[g] = true;
+                        hinges.push(Hinge {
+                            group: g,
+                            node: groups[g].node,
+                            lambda,
+                            sign,
+                            section: sec,
+                        });
+                    }
+                }
+                (Some((sec, sign)), None) if y.is_some() => {
+                    events.push(HingeEvent {
+                        kind: EventKind::FlowStopped,
+                        group: g,
+                        section: sec,
+                        sign,
+                    });
+                }
+                _ => {}
+            }
+            if a.is_some() {
+                flowed[g] = true;
+                accelerating.push(g);
+            } else if flowed[g] && y.is_some() {
+                constant_rate.push(g);
+            }
+            if reported_yield[g] {
+                at_yield.push(g);
+            }
+        }
+        events.sort_by_key(|e| match e.kind {
+            EventKind::Yielded => 0,
+            EventKind::FlowStarted => 1,
+            EventKind::FlowStopped => 2,
+            EventKind::Unloaded => 3,
+        });
+        let same_mechanism = intervals
+            .last()
+            .map(|iv: &Interval| {
+                !iv.rigid
+                    && iv.accelerating == accelerating
+                    && iv.constant_rate == constant_rate
+                    && iv.at_yield == at_yield
+            })
+            .unwrap_or(false);
+        if events.is_empty()
+            && same_mechanism
+            && same_acceleration(
+                system,
+                &pieces[intervals.last().map(|i| i.piece).unwrap_or(k)],
+                &pieces[k],
+                tolerance,
+            )
+        {
+            // nothing observable changed (a pivot on non-unique forces): extend
+            if let Some(iv) = intervals.last_mut() {
+                iv.lambda_to = pieces[k].lambda_to;
+            }
+        } else {
+            breakpoints.push(EventPoint {
+                lambda,
+                events,
+                stress_unique: st.unique,
+            });
+            intervals.push(Interval {
+                lambda_from: lambda,
+                lambda_to: pieces[k].lambda_to,
+                piece: k,
+                rigid: false,
+                accelerating,
+                constant_rate,
+                at_yield,
+            });
+        }
+        prev_acc = now_acc;
+        prev_yield = now_yield;
+    }
+    Reading {
+        groups,
+        group_of,
+        breakpoints,
+        intervals,
+        hinges,
+    }
+}
+
+/// The accelerations of two pieces are the same affine function of `Lambda`.
+fn same_acceleration(system: &System, a: &Piece, b: &Piece, tolerance: f64) -> bool {
+    let nb = system.coordinates.len();
+    let l = b.representative();
+    let (ua, ub) = (a.u(l), b.u(l));
+    let (sa, sb) = (&a.du, &b.du);
+    let scale = ua[..nb]
+        .iter()
+        .chain(&ub[..nb])
+        .fold(1e-300f64, |s, v| s.max(v.abs()));
+    let sscale = sa[..nb]
+        .iter()
+        .chain(&sb[..nb])
+        .fold(1e-300f64, |s, v| s.max(v.abs()));
+    (0..nb).all(|j| {
+        (ua[j] - ub[j]).abs() <= 1e3 * tolerance * scale
+            && (sa[j] - sb[j]).abs() <= 1e3 * tolerance * sscale
+    })
+}
+
+/// A section as the JSON and the tables name it.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SectionName {
+    /// Member id.
+    pub member: String,
+    /// `"from"` or `"to"`: the end of its element.
+    pub end: End,
+    /// Node id.
+    pub node: String,
+}
+
+/// Names a section.
+pub fn section_name(frame: &Frame, system: &System, section: usize) -> SectionName {
+    let s = &system.sections[section];
+    SectionName {
+        member: frame.members[s.member].id.clone(),
+        end: s.end,
+        node: frame.nodes[s.node].id.clone(),
+    }
+}
+
+/// The moment of `section` from the free variables `u = (q_dd, X)`, 0 if left out.
+pub fn moment(system: &System, u: &[f64], section: usize) -> f64 {
+    let nb = system.coordinates.len();
+    system
+        .forces
+        .iter()
+        .position(|f| *f == MemberForce::Moment(section))
+        .map(|r| u[nb + r])
+        .unwrap_or(0.0)
+}

@@ -1,0 +1,555 @@
+//! Reports of an analysis: a readable text and the JSON document.
+
+use crate::analysis::Analysis;
+use crate::assemble::MemberForce;
+use crate::hinge::{section_name, EventKind, HingeEvent};
+use crate::model::Component;
+use serde_json::{json, Map, Value};
+use std::fmt::Write;
+
+fn num(x: f64) -> Value {
+    if x.is_finite() {
+        json!(x)
+    } else {
+        Value::Null
+    }
+}
+
+fn fmt_g(x: f64) -> String {
+    if !x.is_finite() {
+        return "inf".into();
+    }
+    if x == 0.0 {
+        return "0".into();
+    }
+    let a = x.abs();
+    if (1e-4..1e6).contains(&a) {
+        let s = format!("{x:.6}");
+        let s = s.trim_end_matches('0').trim_end_matches('.');
+        s.to_string()
+    } else {
+        format!("{x:.6e}")
+    }
+}
+
+impl Analysis {
+    fn section_json(&self, section: usize, sign: &str, tied: &[usize]) -> Value {
+        let n = section_name(&self.scene.frame, &self.system, section);
+        let mut o =
+            json!({"member": n.member, "end": n.end.as_str(), "node": n.node, "sign": sign});
+        let others: Vec<Value> = tied
+            .iter()
+            .filter(|&&k| k != section)
+            .map(|&k| {
+                let m = section_name(&self.scene.frame, &self.system, k);
+                json!({"member": m.member, "end": m.end.as_str(), "node": m.node})
+            })
+            .collect();
+        if !others.is_empty() {
+            o["tied"] = Value::Array(others);
+        }
+        o
+    }
+
+    fn event_json(&self, e: &HingeEvent) -> Value {
+        self.section_json(
+            e.section,
+            e.sign.as_str(),
+            &self.reading.groups[e.group].sections,
+        )
+    }
+
+    fn coord_name(&self, node: usize, c: Component) -> String {
+        format!("{}.{}", self.scene.frame.nodes[node].id, c.as_str())
+    }
+
+    fn force_name(&self, f: &MemberForce) -> String {
+        let fr = &self.scene.frame;
+        match *f {
+            MemberForce::Moment(k) => {
+                let n = section_name(fr, &self.system, k);
+                format!("moment {} {} ({})", n.member, n.end.as_str(), n.node)
+            }
+            MemberForce::Axial(e) => {
+                let el = &fr.elements[e];
+                format!(
+                    "axial force {} ({}-{})",
+                    fr.members[el.member].id, fr.nodes[el.from].id, fr.nodes[el.to].id
+                )
+            }
+        }
+    }
+
+    /// One line per thing left out of system (9).
+    pub fn left_out_summary(&self) -> Vec<String> {
+        let lo = &self.system.left_out;
+        let fr = &self.scene.frame;
+        let mut out = Vec::new();
+        if !lo.supported.is_empty() {
+            let names: Vec<String> = lo
+                .supported
+                .iter()
+                .map(|&(n, c)| self.coord_name(n, c))
+                .collect();
+            out.push(format!(
+                "{} supported coordinates ({})",
+                names.len(),
+                names.join(", ")
+            ));
+        }
+        if !lo.loads_on_supports.is_empty() {
+            let names: Vec<String> = lo
+                .loads_on_supports
+                .iter()
+                .map(|&(n, c)| self.coord_name(n, c))
+                .collect();
+            out.push(format!(
+                "loads on supported coordinates, taken by the supports ({})",
+                names.join(", ")
+            ));
+        }
+        if !lo.decoupled_coordinates.is_empty() || !lo.decoupled_forces.is_empty() {
+            let mut by_comp = std::collections::BTreeMap::new();
+            for &(n, c) in &lo.decoupled_coordinates {
+                by_comp
+                    .entry(c)
+                    .or_insert_with(Vec::new)
+                    .push(fr.nodes[n].id.clone());
+            }
+            let coords: Vec<String> = by_comp
+                .iter()
+                .map(|(c, ns)| format!("{} at {} nodes", c.as_str(), ns.len()))
+                .collect();
+            let axial = lo
+                .decoupled_forces
+                .iter()
+                .filter(|f| matches!(f, MemberForce::Axial(_)))
+                .count();
+            let moments = lo.decoupled_forces.len() - axial;
+            let mut forces = Vec::new();
+            if axial > 0 {
+                forces.push(format!("axial forces of {axial} elements"));
+            }
+            if moments > 0 {
+                forces.push(format!(
+                    "{moments} end moments and {} yield modes",
+                    lo.decoupled_modes
+                ));
+            }
+            out.push(format!(
+                "an unloaded part decoupled from the loaded one (its solution is zero): {}{}{}",
+                coords.join(", "),
+                if coords.is_empty() || forces.is_empty() {
+                    ""
+                } else {
+                    "; "
+                },
+                forces.join(", ")
+            ));
+        }
+        out
+    }
+
+    /// The JSON document (`--json`).
+    pub fn to_json(&self) -> Value {
+        let fr = &self.scene.frame;
+        let sys = &self.system;
+        let sz = sys.sizes();
+        let lo = &sys.left_out;
+        let system = json!({
+            "free": sz.free(),
+            "complementary": sz.modes,
+            "coordinates": sz.coordinates,
+            "member_forces": sz.forces,
+            "yield_modes": sz.modes,
+            "full": {
+                "free": sys.full.free(),
+                "complementary": sys.full.modes,
+                "coordinates": sys.full.coordinates,
+                "member_forces": sys.full.forces,
+                "yield_modes": sys.full.modes,
+            },
+            "left_out": {
+                "summary": self.left_out_summary(),
+                "supported": lo.supported.iter().map(|&(n, c)| self.coord_name(n, c)).collect::<Vec<_>>(),
+                "loads_on_supports": lo.loads_on_supports.iter().map(|&(n, c)| self.coord_name(n, c)).collect::<Vec<_>>(),
+                "decoupled_coordinates": lo.decoupled_coordinates.iter().map(|&(n, c)| self.coord_name(n, c)).collect::<Vec<_>>(),
+                "decoupled_forces": lo.decoupled_forces.iter().map(|f| self.force_name(f)).collect::<Vec<_>>(),
+                "decoupled_yield_modes": lo.decoupled_modes,
+            },
+            "statically_determinate": sys.is_determinate(),
+            "indeterminacy": sys.indeterminacy(),
+            "axial": "members inextensible: the axial force of each element is a member force whose elongation rate is held at zero (no yield mode)",
+        });
+        let info = &self.solution.info;
+        let solver = json!({
+            "method": info.method,
+            "precision": info.precision,
+            "pivots": info.pivots,
+            "degenerate_pivots": info.degenerate_pivots,
+            "residual": {"equation": info.residual.equation, "feasibility": info.residual.feasibility, "complementarity": info.residual.complementarity},
+            "lambda_reached": num(self.solution.lambda_reached),
+            "message": self.solution.message,
+            "free_block": {"rank": info.free_block.rank, "nonbasic_free": info.free_block.nonbasic_free.len(), "dependent_rows": info.free_block.dependent_rows.len()},
+        });
+        let breakpoints: Vec<Value> = self
+            .reading
+            .breakpoints
+            .iter()
+            .map(|b| {
+                let mut o = Map::new();
+                o.insert("lambda".into(), num(b.lambda));
+                for k in [
+                    EventKind::Yielded,
+                    EventKind::FlowStarted,
+                    EventKind::FlowStopped,
+                    EventKind::Unloaded,
+                ] {
+                    o.insert(
+                        k.as_str().into(),
+                        Value::Array(b.of(k).map(|e| self.event_json(e)).collect()),
+                    );
+                }
+                o.insert("stress_unique".into(), json!(b.stress_unique));
+                Value::Object(o)
+            })
+            .collect();
+        let hinges: Vec<Value> = self
+            .reading
+            .hinges
+            .iter()
+            .map(|h| {
+                let mut v = self.section_json(
+                    h.section,
+                    h.sign.as_str(),
+                    &self.reading.groups[h.group].sections,
+                );
+                v["lambda"] = num(h.lambda);
+                v
+            })
+            .collect();
+        let group_nodes = |gs: &[usize]| -> Vec<Value> {
+            gs.iter()
+                .map(|&g| {
+                    let k = self.reading.groups[g].sections[0];
+                    let n = section_name(fr, sys, k);
+                    if self.reading.groups[g].sections.len() > 1 {
+                        json!({"node": n.node})
+                    } else {
+                        json!({"node": n.node, "member": n.member, "end": n.end.as_str()})
+                    }
+                })
+                .collect()
+        };
+        let intervals: Vec<Value> = self
+            .reading
+            .intervals
+            .iter()
+            .zip(&self.response.intervals)
+            .map(|(iv, r)| {
+                let mut acc = Map::new();
+                for (i, n) in fr.nodes.iter().enumerate() {
+                    let mut o = Map::new();
+                    for c in Component::ALL {
+                        o.insert(c.as_str().into(), json!(r.accelerations[i][c.index()]));
+                    }
+                    acc.insert(n.id.clone(), Value::Object(o));
+                }
+                json!({
+                    "lambda_from": num(iv.lambda_from),
+                    "lambda_to": num(iv.lambda_to),
+                    "rigid": iv.rigid,
+                    "accelerating": group_nodes(&iv.accelerating),
+                    "constant_rate": group_nodes(&iv.constant_rate),
+                    "accelerations": acc,
+                    "moments": self.member_moments(|k| r.moments[k]),
+                    "residual": {"equation": r.residual.equation, "feasibility": r.residual.feasibility, "complementarity": r.residual.complementarity},
+                })
+            })
+            .collect();
+        let moments: Vec<Value> = self
+            .response
+            .moments_at_breakpoints
+            .iter()
+            .map(|d| json!({"lambda": num(d.lambda), "members": self.member_moments(|k| d.moments[k])}))
+            .collect();
+        let t = &self.response.time;
+        let mut nodes = Map::new();
+        for (i, n) in fr.nodes.iter().enumerate() {
+            let series = |v: &Vec<Vec<[f64; 3]>>| {
+                let mut o = Map::new();
+                for c in Component::ALL {
+                    o.insert(
+                        c.as_str().into(),
+                        json!(v.iter().map(|row| row[i][c.index()]).collect::<Vec<_>>()),
+                    );
+                }
+                Value::Object(o)
+            };
+            nodes.insert(
+                n.id.clone(),
+                json!({"displacement": series(&t.displacement), "velocity": series(&t.velocity)}),
+            );
+        }
+        json!({
+            "scene": self.scene.file,
+            "title": fr.title,
+            "system": system,
+            "solver": solver,
+            "status": self.solution.status.as_str(),
+            "collapse_load": self.reading.collapse_load().map(num).unwrap_or(Value::Null),
+            "conventions": "bending moments sagging-positive in each element's axes (local y = member direction turned 90 degrees counter-clockwise); sign of a section = sign of its moment at yield; end = end of the element the section sits at; affine values are [base, slope] with value = base + slope * lambda",
+            "breakpoints": breakpoints,
+            "hinges": hinges,
+            "intervals": intervals,
+            "moments_at_breakpoints": moments,
+            "response": {
+                "history": t.history.describe(),
+                "method": t.method,
+                "times": t.times,
+                "lambda": t.lambda,
+                "nodes": nodes,
+            },
+        })
+    }
+
+    /// Per member: `from`, `to` and `along` (`[s, value]` at every element end).
+    fn member_moments<V: serde::Serialize + Copy>(&self, value: impl Fn(usize) -> V) -> Value {
+        let fr = &self.scene.frame;
+        let mut out = Map::new();
+        for (mi, m) in fr.members.iter().enumerate() {
+            let mut along = Vec::new();
+            let mut s = 0.0;
+            for e in m.elements.clone() {
+                along.push(json!([s, value(2 * e)]));
+                s += fr.elements[e].length;
+                along.push(json!([s, value(2 * e + 1)]));
+            }
+            let _ = mi;
+            out.insert(
+                m.id.clone(),
+                json!({"from": value(2 * m.elements.start), "to": value(2 * m.elements.end - 1), "along": along}),
+            );
+        }
+        Value::Object(out)
+    }
+
+    fn group_label(&self, g: usize) -> String {
+        let fr = &self.scene.frame;
+        let grp = &self.reading.groups[g];
+        if grp.sections.len() > 1 {
+            fr.nodes[grp.node].id.clone()
+        } else {
+            let n = section_name(fr, &self.system, grp.sections[0]);
+            format!("{} ({} {})", n.node, n.member, n.end.as_str())
+        }
+    }
+
+    /// The readable report: the system, the table of critical `Lambda` with the
+    /// hinges that form, then the intervals.
+    pub fn to_text(&self) -> String {
+        let fr = &self.scene.frame;
+        let sys = &self.system;
+        let sz = sys.sizes();
+        let mut s = String::new();
+        let title = if fr.title.is_empty() {
+            "frame"
+        } else {
+            &fr.title
+        };
+        let _ = writeln!(s, "{title} ({})", self.scene.file);
+        let _ = writeln!(
+            s,
+            "system (9): {} coordinates, {} member forces, {} yield modes: mixed PLCP with {} free and {} complementary variables",
+            sz.coordinates,
+            sz.forces,
+            sz.modes,
+            sz.free(),
+            sz.modes
+        );
+        let _ = writeln!(
+            s,
+            "  before leaving out: {} coordinates, {} member forces, {} yield modes",
+            sys.full.coordinates, sys.full.forces, sys.full.modes
+        );
+        for l in self.left_out_summary() {
+            let _ = writeln!(s, "  left out: {l}");
+        }
+        let _ = writeln!(
+            s,
+            "  {} (degree of indeterminacy {}); members inextensible (axial forces kept as reactions)",
+            if sys.is_determinate() { "statically determinate" } else { "statically indeterminate" },
+            sys.indeterminacy()
+        );
+        let info = &self.solution.info;
+        let _ = writeln!(
+            s,
+            "solved: {} in {}, {} pivots, status {}, worst residual {:.1e}",
+            info.method,
+            info.precision,
+            info.pivots,
+            self.solution.status.as_str(),
+            info.residual.worst()
+        );
+        if !self.solution.status.is_success() {
+            let _ = writeln!(
+                s,
+                "  WARNING: the path ended early at Lambda = {}: {}",
+                fmt_g(self.solution.lambda_reached),
+                self.solution.message
+            );
+        }
+        let _ = writeln!(
+            s,
+            "  sign: + sagging, - hogging (element axes); load history: {}",
+            self.scene.history.describe()
+        );
+        let _ = writeln!(s);
+        let _ = writeln!(s, "critical Lambda   hinges and events");
+        if self.reading.breakpoints.is_empty() {
+            let _ = writeln!(s, "  (none: the frame stays rigid over the traced range)");
+        }
+        for (i, b) in self.reading.breakpoints.iter().enumerate() {
+            let mut parts = Vec::new();
+            let label = |e: &HingeEvent| {
+                format!(
+                    "{}{}",
+                    self.group_label(e.group),
+                    if e.sign == crate::assemble::Sign::Positive {
+                        "+"
+                    } else {
+                        "-"
+                    }
+                )
+            };
+            let forms: Vec<String> = self
+                .reading
+                .hinges
+                .iter()
+                .filter(|h| h.lambda == b.lambda)
+                .map(|h| self.group_label(h.group))
+                .collect();
+            if !forms.is_empty() {
+                parts.push(format!("hinge forms at {}", forms.join(", ")));
+            }
+            for (k, what) in [
+                (EventKind::Yielded, "yielded"),
+                (EventKind::FlowStarted, "started to flow"),
+                (
+                    EventKind::FlowStopped,
+                    "stopped accelerating (rotates on at constant rate)",
+                ),
+                (EventKind::Unloaded, "UNLOADED (deactivation)"),
+            ] {
+                let v: Vec<String> = b.of(k).map(label).collect();
+                if !v.is_empty() {
+                    parts.push(format!("{what}: {}", v.join(", ")));
+                }
+            }
+            let note = if i == 0 {
+                "  [static collapse load]"
+            } else {
+                ""
+            };
+            let _ = writeln!(s, "{:>15}   {}{}", fmt_g(b.lambda), parts.join("; "), note);
+        }
+        let dea = self.reading.deactivations();
+        if !dea.is_empty() {
+            let _ = writeln!(s, "WARNING: {} deactivation(s): a flowing hinge left yield, against the paper's claim for this loading class", dea.len());
+        }
+        let _ = writeln!(s);
+        let _ = writeln!(
+            s,
+            "intervals (accelerations of the nodes with mass, base + slope * Lambda)"
+        );
+        let massive: Vec<usize> = (0..fr.nodes.len())
+            .filter(|&i| fr.nodes[i].mass > 0.0 || fr.nodes[i].inertia > 0.0)
+            .collect();
+        for (iv, r) in self.reading.intervals.iter().zip(&self.response.intervals) {
+            let range = format!(
+                "[{}, {}]",
+                fmt_g(iv.lambda_from),
+                if iv.lambda_to.is_finite() {
+                    fmt_g(iv.lambda_to)
+                } else {
+                    "inf)".trim_end_matches(')').to_string() + ")"
+                }
+            );
+            if iv.rigid {
+                let _ = writeln!(s, "  {range:<24} rigid (no plastic flow)");
+                continue;
+            }
+            let acc: Vec<String> = iv
+                .accelerating
+                .iter()
+                .map(|&g| self.group_label(g))
+                .collect();
+            let cr: Vec<String> = iv
+                .constant_rate
+                .iter()
+                .map(|&g| self.group_label(g))
+                .collect();
+            let _ = writeln!(
+                s,
+                "  {range:<24} accelerating: {}{}   residual {:.1e}",
+                acc.join(", "),
+                if cr.is_empty() {
+                    String::new()
+                } else {
+                    format!("; constant rate: {}", cr.join(", "))
+                },
+                r.residual.worst()
+            );
+            if massive.len() <= 8 {
+                for &i in &massive {
+                    let a = r.accelerations[i];
+                    let comps: Vec<String> = Component::ALL
+                        .iter()
+                        .filter(|c| a[c.index()] != [0.0, 0.0])
+                        .map(|c| {
+                            format!(
+                                "{} = {} + {} L",
+                                c.as_str(),
+                                fmt_g(a[c.index()][0]),
+                                fmt_g(a[c.index()][1])
+                            )
+                        })
+                        .collect();
+                    if !comps.is_empty() {
+                        let _ =
+                            writeln!(s, "  {:<24}   {}: {}", "", fr.nodes[i].id, comps.join(", "));
+                    }
+                }
+            }
+        }
+        let t = &self.response.time;
+        if let Some(&t_end) = t.times.last() {
+            let _ = writeln!(s);
+            let k = t.times.len() - 1;
+            let mut far = (0usize, 0.0f64);
+            for (i, d) in t.displacement[k].iter().enumerate() {
+                let m = d[0].hypot(d[1]);
+                if m > far.1 {
+                    far = (i, m);
+                }
+            }
+            let d = t.displacement[k][far.0];
+            let _ = writeln!(
+                s,
+                "at t = {} (lambda = {}): largest displacement at {}: x = {}, y = {}  [{}]",
+                fmt_g(t_end),
+                fmt_g(t.lambda[k]),
+                fr.nodes[far.0].id,
+                fmt_g(d[0]),
+                fmt_g(d[1]),
+                "integration exact on each piece"
+            );
+        }
+        s
+    }
+}
+
+/// Formats a number compactly (six significant digits).
+pub fn format_number(x: f64) -> String {
+    fmt_g(x)
+}

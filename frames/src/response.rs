@@ -1,0 +1,204 @@
+//! The response: accelerations and member forces affine in `Lambda` on each
+//! interval, the bending moments at every critical `Lambda`, the residual of
+//! system (9) on every interval, and velocities and displacements over time
+//! for the scene's history.
+
+use crate::assemble::System;
+use crate::hinge::{moment, Interval, Reading};
+use crate::integrate::{integrate, AffinePiece, Motion, METHOD};
+use crate::model::{Frame, History};
+use crate::solve::Piece;
+use faer::Col;
+use plcp::{Point, Residual};
+
+/// `[base, slope]`: the value is `base + slope * Lambda`.
+pub type Affine = [f64; 2];
+
+/// One interval of the response.
+#[derive(Clone, Debug, PartialEq)]
+pub struct IntervalResponse {
+    /// Start.
+    pub lambda_from: f64,
+    /// End (`f64::INFINITY` when unbounded).
+    pub lambda_to: f64,
+    /// Accelerations per node, per component `[x, y, rz]`, affine in `Lambda`
+    /// (zero for supported and left-out components).
+    pub accelerations: Vec<[Affine; 3]>,
+    /// Bending moment per critical section, affine in `Lambda` (not unique
+    /// where the stress is not; see [`crate::hinge`]).
+    pub moments: Vec<Affine>,
+    /// Worst residual of the mixed PLCP of system (9) at the ends of the interval
+    /// (at its start and at one more point when unbounded): equation (dynamic
+    /// equilibrium, kinematics, yield), feasibility, complementarity.
+    pub residual: Residual,
+}
+
+/// The bending moments at one critical `Lambda`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct MomentDiagram {
+    /// The load parameter.
+    pub lambda: f64,
+    /// Bending moment (sagging positive) at every critical section.
+    pub moments: Vec<f64>,
+}
+
+/// Displacements and velocities of the nodes over time.
+#[derive(Clone, Debug, PartialEq)]
+pub struct TimeResponse {
+    /// The history.
+    pub history: History,
+    /// How velocities and displacements were integrated.
+    pub method: &'static str,
+    /// Times.
+    pub times: Vec<f64>,
+    /// `lambda(t)`.
+    pub lambda: Vec<f64>,
+    /// Per time, per node, `[x, y, rz]`.
+    pub displacement: Vec<Vec<[f64; 3]>>,
+    /// Per time, per node, `[x, y, rz]`.
+    pub velocity: Vec<Vec<[f64; 3]>>,
+}
+
+/// Everything the response holds.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Response {
+    /// One per interval of the reading.
+    pub intervals: Vec<IntervalResponse>,
+    /// One per breakpoint of the reading.
+    pub moments_at_breakpoints: Vec<MomentDiagram>,
+    /// Over time.
+    pub time: TimeResponse,
+}
+
+fn to_nodes(frame: &Frame, system: &System, q: &[f64]) -> Vec<[f64; 3]> {
+    let mut out = vec![[0.0; 3]; frame.nodes.len()];
+    for (j, c) in system.coordinates.iter().enumerate() {
+        out[c.node][c.component.index()] = q[j];
+    }
+    out
+}
+
+/// The residual of the mixed PLCP at `lambda` on a piece.
+pub fn residual_at(system: &System, piece: &Piece, lambda: f64) -> Residual {
+    let Ok(problem) = system.plcp::<f64>(None) else {
+        return Residual::default();
+    };
+    let col = |v: Vec<f64>| Col::from_fn(v.len(), |i| v[i]);
+    let point = Point {
+        lambda,
+        z: col(piece.z(lambda)),
+        w: col(piece.w(lambda)),
+        u: col(piece.u(lambda)),
+    };
+    plcp::residual::residual(&problem, &point)
+}
+
+/// The affine accelerations of an interval (zero in the rigid phase).
+fn affine_accelerations(system: &System, iv: &Interval, piece: &Piece) -> (Vec<f64>, Vec<f64>) {
+    let nb = system.coordinates.len();
+    if iv.rigid {
+        return (vec![0.0; nb], vec![0.0; nb]);
+    }
+    let u0 = piece.u(0.0);
+    (u0[..nb].to_vec(), piece.du[..nb].to_vec())
+}
+
+/// A default end time: `Lambda` reaches 1.5 times the last critical value (or
+/// `lambda_max`, or the history's plateau), whichever the history allows.
+pub fn default_t_end(history: &History, reading: &Reading, lambda_max: Option<f64>) -> f64 {
+    let last = reading.breakpoints.last().map(|b| b.lambda).unwrap_or(1.0);
+    let mut target = 1.5 * last;
+    if let Some(lm) = lambda_max {
+        target = target.min(lm);
+    }
+    match history.time_at(target) {
+        Some(t) if t > 0.0 => t,
+        _ => match history {
+            History::Saturating { tau, .. } => 5.0 * tau,
+            History::Table { points } => 1.5 * points[points.len() - 1].0,
+            History::Ramp { rate } => target.max(1.0) / rate,
+        },
+    }
+}
+
+/// Builds the response.
+pub fn build(
+    frame: &Frame,
+    system: &System,
+    pieces: &[Piece],
+    reading: &Reading,
+    history: &History,
+    times: &[f64],
+) -> Response {
+    let ns = system.sections.len();
+    let mut intervals = Vec::new();
+    let mut affine_pieces = Vec::new();
+    for iv in &reading.intervals {
+        let piece = &pieces[iv.piece];
+        let (base, slope) = affine_accelerations(system, iv, piece);
+        let mut acc = vec![[[0.0; 2]; 3]; frame.nodes.len()];
+        for (j, c) in system.coordinates.iter().enumerate() {
+            acc[c.node][c.component.index()] = [base[j], slope[j]];
+        }
+        let u0 = piece.u(0.0);
+        let moments = (0..ns)
+            .map(|k| [moment(system, &u0, k), moment(system, &piece.du, k)])
+            .collect();
+        // residuals on every piece the interval spans
+        let mut res = Residual::default();
+        for p in pieces.iter().filter(|p| {
+            p.lambda_from >= iv.lambda_from
+                && p.lambda_from < iv.lambda_to.max(iv.lambda_from + f64::MIN_POSITIVE)
+        }) {
+            res = res.max(residual_at(system, p, p.lambda_from));
+            res = res.max(residual_at(system, p, p.representative()));
+        }
+        intervals.push(IntervalResponse {
+            lambda_from: iv.lambda_from,
+            lambda_to: iv.lambda_to,
+            accelerations: acc,
+            moments,
+            residual: res,
+        });
+        affine_pieces.push(AffinePiece {
+            lambda_from: iv.lambda_from,
+            lambda_to: iv.lambda_to,
+            base,
+            slope,
+        });
+    }
+    let moments_at_breakpoints = reading
+        .breakpoints
+        .iter()
+        .zip(reading.intervals.iter().filter(|i| !i.rigid))
+        .map(|(b, iv)| {
+            let u = pieces[iv.piece].u(b.lambda);
+            MomentDiagram {
+                lambda: b.lambda,
+                moments: (0..ns).map(|k| moment(system, &u, k)).collect(),
+            }
+        })
+        .collect();
+    let motion: Motion = integrate(&affine_pieces, history, times);
+    let time = TimeResponse {
+        history: history.clone(),
+        method: METHOD,
+        times: motion.times.clone(),
+        lambda: motion.lambda.clone(),
+        displacement: motion
+            .displacement
+            .iter()
+            .map(|q| to_nodes(frame, system, q))
+            .collect(),
+        velocity: motion
+            .velocity
+            .iter()
+            .map(|q| to_nodes(frame, system, q))
+            .collect(),
+    };
+    Response {
+        intervals,
+        moments_at_breakpoints,
+        time,
+    }
+}

@@ -1,0 +1,155 @@
+//! Solving system (9) with plcp in the chosen precision, and reading the path
+//! back in `f64` as pieces on which every unknown is affine in `Lambda`.
+
+use crate::assemble::System;
+use crate::error::FramesError;
+use plcp::{Method, Path, Precision, Scalar, Settings, Status};
+
+/// How to solve.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SolveOptions {
+    /// [`Method::Wolfe`] (long form on the unreduced system, the default) or
+    /// [`Method::Lemke`] (on the Schur reduction: statically determinate frames only).
+    pub method: Method,
+    /// Working precision of the solve (the report is in `f64`).
+    pub precision: Precision,
+    /// Largest `Lambda` (`None`: infinity).
+    pub lambda_max: Option<f64>,
+}
+
+impl Default for SolveOptions {
+    fn default() -> Self {
+        Self {
+            method: Method::Wolfe,
+            precision: Precision::F64,
+            lambda_max: None,
+        }
+    }
+}
+
+/// A piece of the path: on `[lambda_from, lambda_to]` every unknown is affine in `Lambda`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Piece {
+    /// Start.
+    pub lambda_from: f64,
+    /// End (`f64::INFINITY` for the last piece of an unbounded ray).
+    pub lambda_to: f64,
+    /// Free variables `(q_dd, X)` at `lambda_from`.
+    pub u_from: Vec<f64>,
+    /// Their slopes.
+    pub du: Vec<f64>,
+    /// Plastic multiplier accelerations `x*_dd` at `lambda_from`.
+    pub z_from: Vec<f64>,
+    /// Their slopes.
+    pub dz: Vec<f64>,
+    /// Plastic potentials `y*` at `lambda_from`.
+    pub w_from: Vec<f64>,
+    /// Their slopes.
+    pub dw: Vec<f64>,
+}
+
+fn affine(from: &[f64], slope: &[f64], dl: f64) -> Vec<f64> {
+    from.iter().zip(slope).map(|(a, b)| a + b * dl).collect()
+}
+
+impl Piece {
+    /// `(q_dd, X)` at `lambda`.
+    pub fn u(&self, lambda: f64) -> Vec<f64> {
+        affine(&self.u_from, &self.du, lambda - self.lambda_from)
+    }
+    /// `x*_dd` at `lambda`.
+    pub fn z(&self, lambda: f64) -> Vec<f64> {
+        affine(&self.z_from, &self.dz, lambda - self.lambda_from)
+    }
+    /// `y*` at `lambda`.
+    pub fn w(&self, lambda: f64) -> Vec<f64> {
+        affine(&self.w_from, &self.dw, lambda - self.lambda_from)
+    }
+    /// A value of `Lambda` inside the piece, away from its ends.
+    pub fn representative(&self) -> f64 {
+        if self.lambda_to.is_finite() {
+            0.5 * (self.lambda_from + self.lambda_to)
+        } else {
+            self.lambda_from + self.lambda_from.abs().max(1.0)
+        }
+    }
+}
+
+/// The path of system (9), read in `f64`.
+#[derive(Clone, Debug)]
+pub struct Solution {
+    /// How the path ended (see [`plcp::Status`]).
+    pub status: Status,
+    /// plcp's message (evidence behind a status other than success).
+    pub message: String,
+    /// The `Lambda` the path reached.
+    pub lambda_reached: f64,
+    /// The pieces in order of rising `Lambda`.
+    pub pieces: Vec<Piece>,
+    /// plcp's diagnostics (pivots, residuals, free block).
+    pub info: plcp::Info,
+    /// Relative tolerance for reading signs off the path in this precision.
+    pub tolerance: f64,
+}
+
+fn to_vec<T: Scalar>(c: &faer::Col<T>) -> Vec<f64> {
+    (0..c.nrows()).map(|i| c[i].to_f64()).collect()
+}
+
+fn read<T: Scalar>(path: Path<T>) -> Solution {
+    let pieces = path
+        .segments
+        .iter()
+        .map(|s| Piece {
+            lambda_from: s.lambda_from.to_f64(),
+            lambda_to: if s.unbounded {
+                f64::INFINITY
+            } else {
+                s.lambda_to.to_f64()
+            },
+            u_from: to_vec(&s.u_from),
+            du: to_vec(&s.du),
+            z_from: to_vec(&s.z_from),
+            dz: to_vec(&s.dz),
+            w_from: to_vec(&s.w_from),
+            dw: to_vec(&s.dw),
+        })
+        .collect();
+    let eps = T::eps().to_f64();
+    Solution {
+        status: path.status,
+        message: path.message,
+        lambda_reached: path.lambda_reached.to_f64(),
+        pieces,
+        info: path.info,
+        tolerance: (eps.sqrt() * 10.0).max(1e-13),
+    }
+}
+
+fn solve_in<T: Scalar>(system: &System, options: &SolveOptions) -> Result<Solution, FramesError> {
+    let problem = system.plcp::<T>(options.lambda_max)?;
+    let settings = Settings::<T>::with_method(options.method);
+    let path = plcp::solve(&problem, &settings)?;
+    Ok(read(path))
+}
+
+/// Solves system (9) with plcp.
+///
+/// Errors only for input plcp refuses, e.g. [`Method::Lemke`] on a statically
+/// indeterminate frame (`PlcpError::SingularFreeBlock`); every outcome of the
+/// path itself is a [`Status`] in the solution.
+pub fn solve(system: &System, options: &SolveOptions) -> Result<Solution, FramesError> {
+    if let Some(l) = options.lambda_max {
+        if !(l > 0.0) || l.is_nan() {
+            return Err(FramesError::invalid(
+                "lambda_max",
+                format!("must be positive, got {l}"),
+            ));
+        }
+    }
+    match options.precision {
+        Precision::F32 => solve_in::<f32>(system, options),
+        Precision::F64 => solve_in::<f64>(system, options),
+        Precision::F128 => solve_in::<faer::fx128>(system, options),
+    }
+}
