@@ -700,16 +700,13 @@ pub fn check_path<T: Scalar>(
         if s.unbounded && k + 1 != path.segments.len() {
             return Err(format!("segment {k} is unbounded but not the last"));
         }
-        if s.basis.len() != n {
-            return Err(format!(
-                "segment {k}: basis has {} entries, n = {n}",
-                s.basis.len()
-            ));
-        }
+        // one of w_i, z_i per pair; a mixed problem's basis may also hold free
+        // variables and the artificial variables of dependent rows (Wolfe's long form)
         let mut seen = vec![false; n];
         for v in &s.basis {
             match *v {
                 Var::W(i) | Var::Z(i) if i < n && !seen[i] => seen[i] = true,
+                Var::U(j) | Var::Artificial(j) if j < p => {}
                 other => {
                     return Err(format!(
                         "segment {k}: basis {:?} is not complementary (bad entry {other})",
@@ -717,6 +714,12 @@ pub fn check_path<T: Scalar>(
                     ))
                 }
             }
+        }
+        if seen.iter().any(|s| !s) {
+            return Err(format!(
+                "segment {k}: basis {:?} misses a complementary pair",
+                s.basis
+            ));
         }
         if s.z_from.nrows() != n
             || s.w_from.nrows() != n
@@ -732,7 +735,7 @@ pub fn check_path<T: Scalar>(
             let (val, slope, name) = match *v {
                 Var::W(i) => (s.z_from[i], s.dz[i], format!("z{i}")),
                 Var::Z(i) => (s.w_from[i], s.dw[i], format!("w{i}")),
-                _ => unreachable!(),
+                _ => continue,
             };
             if val != T::zero() || slope != T::zero() {
                 // allow rounding only at the residual tolerance
@@ -755,6 +758,19 @@ pub fn check_path<T: Scalar>(
         }
         if k > 0 {
             let prev = &path.segments[k - 1];
+            if monotone_l && prev.lambda_to < s.lambda_from {
+                // a hole between the segments: `at` must still answer inside it
+                let mid = prev.lambda_to + (s.lambda_from - prev.lambda_to) * T::from_f64(0.5);
+                if path.at(mid).is_none() {
+                    return Err(format!(
+                        "hole between segments {} and {k}: path.at({:e}) is None (segments end at {:e} and start at {:e})",
+                        k - 1,
+                        mid.to_f64(),
+                        prev.lambda_to.to_f64(),
+                        s.lambda_from.to_f64()
+                    ));
+                }
+            }
             if !near(prev.lambda_to, s.lambda_from) {
                 return Err(format!(
                     "gap between segments {} and {k}: {} vs {}",

@@ -1,0 +1,1028 @@
+//! Mixed PLCPs (free variables): Wolfe's long form against Lemke on the Schur
+//! reduction, and against an independent QP solver (Clarabel).
+//!
+//! Random convex parametric QPs with equality constraints,
+//!
+//! ```text
+//! minimise 1/2 x'Hx + (c + L e)'x   subject to  A x = b + L b_d,  x_J >= 0,
+//! ```
+//!
+//! `x = (x_f, z)` (free primal variables, then the bounded ones), `H = B B'`
+//! positive semidefinite and singular, give the mixed PLCP with free variables
+//! `u = (x_f, y)` (`y` the equality multipliers) and complementary pairs `(z, w)`:
+//!
+//! ```text
+//! M = [[ H_ff, A_f', H_fz],      q = (c_f, b, c_z),   d = (e_f, b_d, e_z),
+//!      [-A_f,  0,   -A_z],
+//!      [ H_zf, A_z', H_zz]]
+//! ```
+//!
+//! (the equality rows negated so that `M` is monotone: its symmetric part is
+//! `diag(H)`-shaped and PSD). The free block is `[[H_ff, A_f'], [-A_f, 0]]`;
+//! it is singular when `A` has a dependent row (multipliers not unique), when `A`
+//! has more rows than there are free primal variables (as in system (9) of an
+//! indeterminate frame), or when a free primal variable appears nowhere (its value
+//! is not unique). Variants with `H_zz = H_fz = 0` (the bounded variables enter
+//! linearly, as the plastic multipliers of system (9)) are included.
+//!
+//! Checks (all data dyadic, so every precision solves the same problem):
+//!
+//! * nonsingular free block: Wolfe and Lemke-on-the-reduction return the same
+//!   status, and where the solution is unique (reduced matrix positive definite)
+//!   the same breakpoints and the same `u, z, w` at every segment end and interior
+//!   point; otherwise the same `w` (unique: the reduced matrix is symmetric PSD).
+//!   Tolerance in f64: 1e-10 relative (to `max(1, |.|_inf)`).
+//! * singular free block: Lemke returns `Err(SingularFreeBlock { p, rank })` with
+//!   the rank computed here; Wolfe reports that rank, `p - rank` nonbasic free
+//!   variables and `p - rank` dependent rows.
+//! * every Wolfe path: residuals (equation, feasibility, complementarity) below
+//!   the stated tolerance at every checked point, and the primal solution at those
+//!   points agrees with Clarabel (gap and feasibility tolerances 1e-11): the
+//!   objective to 1e-6 relative, `H x` to 1e-4 (both unique for a convex QP), `x`
+//!   itself to 1e-4 where `H` is positive definite on the null space of `A` with
+//!   curvature >= 1e-2 (unique and well determined `x`). A path that stops must be
+//!   right to: Clarabel finds the QP unbounded just beyond the stop.
+//! * proptest on random monotone mixed PLCPs `B B' + S + I/8` (not of KKT form):
+//!   Lemke's path against enumeration of the complementary bases with the free
+//!   variables solved for; Wolfe, which claims monotone problems, must succeed
+//!   and agree.
+//! * f32 (agreement 2e-3, residual 2e-5, Clarabel 2e-3) and fx128 (agreement
+//!   1e-22, residual 1e-27, Clarabel as f64).
+
+mod common;
+
+use clarabel::algebra::CscMatrix;
+use clarabel::solver::{DefaultSettings, DefaultSolver, IPSolver, SolverStatus, SupportedConeT};
+use common::*;
+use faer::Mat;
+use plcp::{Method, Path, Plcp, PlcpError, Point, Scalar, Settings, Status};
+use proptest::prelude::*;
+use proptest::test_runner::{FileFailurePersistence, TestCaseError};
+
+// ---------------------------------------------------------------- tolerances
+
+#[derive(Clone, Copy, Debug)]
+struct MixedTol {
+    path: Tol,
+    /// Wolfe against Lemke, relative.
+    agree: f64,
+    /// Against Clarabel: objective (relative), `H x` and `x` (relative).
+    qp_obj: f64,
+    qp_x: f64,
+}
+
+const F64: MixedTol = MixedTol {
+    path: Tol {
+        residual: 1e-11,
+        forward: 1e-9,
+        enum_feas: 1e-9,
+        lambda: 1e-10,
+    },
+    agree: 1e-10,
+    qp_obj: 1e-6,
+    qp_x: 1e-4,
+};
+const F32: MixedTol = MixedTol {
+    path: Tol {
+        residual: 2e-5,
+        forward: 2e-3,
+        enum_feas: 1e-9,
+        lambda: 1e-4,
+    },
+    agree: 2e-3,
+    qp_obj: 2e-3,
+    qp_x: 2e-3,
+};
+const F128: MixedTol = MixedTol {
+    path: Tol {
+        residual: 1e-27,
+        forward: 1e-22,
+        enum_feas: 1e-24,
+        lambda: 1e-24,
+    },
+    agree: 1e-22,
+    qp_obj: 1e-6,
+    qp_x: 1e-4,
+};
+
+// ---------------------------------------------------------------- the QP family
+
+/// A random convex parametric QP and its mixed PLCP.
+#[derive(Clone, Debug)]
+struct Kkt {
+    nf: usize,
+    nb: usize,
+    h: Mat<f64>,
+    a: Mat<f64>,
+    b: Vec<f64>,
+    bd: Vec<f64>,
+    c: Vec<f64>,
+    e: Vec<f64>,
+    lambda_max: Option<f64>,
+    variant: &'static str,
+}
+
+impl Kkt {
+    fn nx(&self) -> usize {
+        self.nf + self.nb
+    }
+    fn m(&self) -> usize {
+        self.a.nrows()
+    }
+    /// The mixed PLCP (see the module docs for the layout).
+    fn instance(&self) -> Instance {
+        let (nf, nb, m) = (self.nf, self.nb, self.m());
+        let p = nf + m;
+        let dim = p + nb;
+        // index of x_j (j < nx) and y_k in the PLCP's unknowns
+        let xi = |j: usize| if j < nf { j } else { p + (j - nf) };
+        let yi = |k: usize| nf + k;
+        let mut mm = Mat::<f64>::zeros(dim, dim);
+        let mut q = vec![0.0; dim];
+        let mut d = vec![0.0; dim];
+        for i in 0..self.nx() {
+            for j in 0..self.nx() {
+                mm[(xi(i), xi(j))] = self.h[(i, j)];
+            }
+            for k in 0..m {
+                mm[(xi(i), yi(k))] = self.a[(k, i)];
+                mm[(yi(k), xi(i))] = -self.a[(k, i)];
+            }
+            q[xi(i)] = self.c[i];
+            d[xi(i)] = self.e[i];
+        }
+        for k in 0..m {
+            q[yi(k)] = self.b[k];
+            d[yi(k)] = self.bd[k];
+        }
+        Instance {
+            m: mm,
+            q,
+            d,
+            free: p,
+            lambda0: 0.0,
+            lambda_max: self.lambda_max,
+            kind: Kind::Other,
+        }
+    }
+    /// `x = (x_f, z)` from a point of the PLCP.
+    fn x_of<T: Scalar>(&self, pt: &Point<T>) -> Vec<f64> {
+        (0..self.nf)
+            .map(|j| pt.u[j].to_f64())
+            .chain((0..self.nb).map(|i| pt.z[i].to_f64()))
+            .collect()
+    }
+    fn hx(&self, x: &[f64]) -> Vec<f64> {
+        (0..self.nx())
+            .map(|i| (0..self.nx()).map(|j| self.h[(i, j)] * x[j]).sum())
+            .collect()
+    }
+    fn objective(&self, x: &[f64], l: f64) -> f64 {
+        let hx = self.hx(x);
+        (0..self.nx())
+            .map(|i| 0.5 * x[i] * hx[i] + (self.c[i] + l * self.e[i]) * x[i])
+            .sum()
+    }
+    /// `H` positive definite on the null space of `A` with curvature at least 1e-2:
+    /// the primal solution is unique and Clarabel's is accurate enough to compare.
+    fn unique_x(&self) -> bool {
+        let nx = self.nx();
+        // null space of A from its SVD
+        let basis: Vec<Vec<f64>> = if self.m() == 0 {
+            (0..nx)
+                .map(|j| (0..nx).map(|i| if i == j { 1.0 } else { 0.0 }).collect())
+                .collect()
+        } else {
+            let svd = self.a.svd().expect("svd");
+            let s = svd.S();
+            let v = svd.V();
+            let smax = (0..s.dim()).fold(0.0f64, |a, i| a.max(s[i].abs()));
+            let rank = (0..s.dim())
+                .filter(|&i| s[i].abs() > 1e-10 * smax.max(1.0))
+                .count();
+            (rank..nx)
+                .map(|j| (0..nx).map(|i| v[(i, j)]).collect())
+                .collect()
+        };
+        let k = basis.len();
+        if k == 0 {
+            return true;
+        }
+        let r = Mat::from_fn(k, k, |a, b| {
+            let hb = self.hx(&basis[b]);
+            (0..nx).map(|i| basis[a][i] * hb[i]).sum::<f64>()
+        });
+        let ev = r
+            .self_adjoint_eigenvalues(faer::Side::Lower)
+            .expect("eigenvalues");
+        // well determined: an interior-point answer is then accurate to about
+        // sqrt(gap / curvature), inside the stated tolerance
+        ev.iter().cloned().fold(f64::INFINITY, f64::min) > 1e-2
+    }
+    /// The QP at `l` by Clarabel: `Ok(x)` or the solver's status. Tolerances
+    /// 1e-11; on a numerical failure (no progress, iteration limit) once more at 1e-9.
+    fn clarabel(&self, l: f64) -> Result<Vec<f64>, SolverStatus> {
+        match self.clarabel_at(l, 1e-11) {
+            Err(
+                SolverStatus::InsufficientProgress
+                | SolverStatus::MaxIterations
+                | SolverStatus::NumericalError,
+            ) => self.clarabel_at(l, 1e-9),
+            r => r,
+        }
+    }
+    fn clarabel_at(&self, l: f64, tol: f64) -> Result<Vec<f64>, SolverStatus> {
+        let nx = self.nx();
+        let m = self.m();
+        let p_rows: Vec<Vec<f64>> = (0..nx)
+            .map(|i| (0..nx).map(|j| self.h[(i, j)]).collect())
+            .collect();
+        let mut a_rows: Vec<Vec<f64>> = (0..m)
+            .map(|k| (0..nx).map(|j| self.a[(k, j)]).collect())
+            .collect();
+        let mut rhs: Vec<f64> = (0..m).map(|k| self.b[k] + l * self.bd[k]).collect();
+        for i in 0..self.nb {
+            // -z_i + s = 0, s >= 0
+            a_rows.push(
+                (0..nx)
+                    .map(|j| if j == self.nf + i { -1.0 } else { 0.0 })
+                    .collect(),
+            );
+            rhs.push(0.0);
+        }
+        let lin: Vec<f64> = (0..nx).map(|i| self.c[i] + l * self.e[i]).collect();
+        let pm = CscMatrix::from(&p_rows);
+        let am = CscMatrix::from(&a_rows);
+        let mut cones = Vec::new();
+        if m > 0 {
+            cones.push(SupportedConeT::ZeroConeT(m));
+        }
+        cones.push(SupportedConeT::NonnegativeConeT(self.nb));
+        let settings = DefaultSettings::<f64> {
+            verbose: false,
+            max_iter: 500,
+            tol_gap_abs: tol,
+            tol_gap_rel: tol,
+            tol_feas: tol,
+            ..DefaultSettings::default()
+        };
+        let mut solver =
+            DefaultSolver::new(&pm, &lin, &am, &rhs, &cones, settings).expect("clarabel setup");
+        solver.solve();
+        match solver.solution.status {
+            SolverStatus::Solved | SolverStatus::AlmostSolved => Ok(solver.solution.x.clone()),
+            s => Err(s),
+        }
+    }
+}
+
+fn dy(k: i32, denom: f64) -> f64 {
+    k as f64 / denom
+}
+
+/// How the free block is made singular (or not).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Free {
+    /// `A_f` of full row rank, `H_ff` generic: nonsingular.
+    Nonsingular,
+    /// The last row of `A` is the sum of the first two: dependent equality rows.
+    DependentRow,
+    /// More equality rows than free primal variables (system (9) of an indeterminate frame).
+    MoreRowsThanFree,
+    /// The first free primal variable appears nowhere: its value is not unique.
+    IdleVariable,
+}
+
+fn kkt(free: Free) -> impl Strategy<Value = Kkt> {
+    let sizes = match free {
+        Free::Nonsingular => (1usize..=3, 1usize..=4, 0usize..=3).boxed(),
+        Free::DependentRow => (1usize..=3, 1usize..=4, 2usize..=3).boxed(),
+        Free::MoreRowsThanFree => (1usize..=2, 2usize..=4, 2usize..=3).boxed(),
+        Free::IdleVariable => (2usize..=3, 1usize..=4, 0usize..=2).boxed(),
+    };
+    sizes
+        .prop_filter("m <= nf for a nonsingular free block", move |(nf, _, m)| {
+            free != Free::Nonsingular || m <= nf
+        })
+        .prop_filter("more rows than free variables", move |(nf, _, m)| {
+            free != Free::MoreRowsThanFree || m > nf
+        })
+        .prop_flat_map(move |(nf, nb, m)| {
+            let nx = nf + nb;
+            (
+                Just((nf, nb, m)),
+                0..nx, // rank of H: singular
+                prop::collection::vec(-8i32..=8, nx * nx),
+                prop::collection::vec(-8i32..=8, m * nx),
+                prop::collection::vec(-8i32..=8, nx),
+                prop::collection::vec(0i32..=8, nx),
+                prop::collection::vec(-16i32..=16, nx),
+                prop::collection::vec(-16i32..=16, nx),
+                any::<bool>(), // the bounded variables enter linearly (H_zz = H_fz = 0)
+                any::<bool>(), // a parametric right-hand side b_d
+                prop_oneof![Just(None), (1i32..=64).prop_map(Some)],
+            )
+        })
+        .prop_map(
+            move |((nf, nb, m), r, bv, av, x0, xd, c, e, linear_z, with_bd, lm)| {
+                let nx = nf + nb;
+                let r = r.max(if free == Free::Nonsingular { nf } else { 0 });
+                let mut bmat: Vec<f64> = (0..nx * r).map(|k| dy(bv[k], 8.0)).collect();
+                if linear_z {
+                    for i in nf..nx {
+                        for k in 0..r {
+                            bmat[i * r + k] = 0.0;
+                        }
+                    }
+                }
+                let mut a = Mat::from_fn(m, nx, |k, j| dy(av[k * nx + j], 8.0));
+                let mut c: Vec<f64> = c.into_iter().map(|k| dy(k, 16.0)).collect();
+                let mut e: Vec<f64> = e.into_iter().map(|k| dy(k, 16.0)).collect();
+                match free {
+                    Free::DependentRow => {
+                        // the last row: the sum of the first two (m = 3) or twice the first (m = 2)
+                        for j in 0..nx {
+                            a[(m - 1, j)] = if m >= 3 {
+                                a[(0, j)] + a[(1, j)]
+                            } else {
+                                2.0 * a[(0, j)]
+                            };
+                        }
+                    }
+                    Free::IdleVariable => {
+                        for k in 0..r {
+                            bmat[k] = 0.0;
+                        }
+                        for kk in 0..m {
+                            a[(kk, 0)] = 0.0;
+                        }
+                        c[0] = 0.0;
+                        e[0] = 0.0;
+                    }
+                    _ => {}
+                }
+                let h = gram(&bmat, nx, r);
+                // a feasible point for every L >= 0: x0 + L xd with xd_z >= 0
+                let x0: Vec<f64> = (0..nx)
+                    .map(|j| {
+                        if j < nf {
+                            dy(x0[j], 8.0)
+                        } else {
+                            dy(x0[j].abs(), 8.0)
+                        }
+                    })
+                    .collect();
+                let xd: Vec<f64> = (0..nx)
+                    .map(|j| if with_bd { dy(xd[j], 16.0) } else { 0.0 })
+                    .collect();
+                let ax = |v: &[f64]| -> Vec<f64> {
+                    (0..m)
+                        .map(|k| (0..nx).map(|j| a[(k, j)] * v[j]).sum())
+                        .collect()
+                };
+                let b = ax(&x0);
+                let bd = ax(&xd);
+                Kkt {
+                    nf,
+                    nb,
+                    h,
+                    a,
+                    b,
+                    bd,
+                    c,
+                    e,
+                    lambda_max: lm.map(|k| dy(k, 8.0)),
+                    variant: match (free, linear_z) {
+                        (Free::Nonsingular, false) => "nonsingular",
+                        (Free::Nonsingular, true) => "nonsingular, linear in z",
+                        (Free::DependentRow, _) => "dependent row",
+                        (Free::MoreRowsThanFree, _) => "more rows than free variables",
+                        (Free::IdleVariable, _) => "idle free variable",
+                    },
+                }
+            },
+        )
+}
+
+// ---------------------------------------------------------------- facts about an instance
+
+/// Numerical rank (f64 SVD) of the free block.
+fn free_block_rank(inst: &Instance) -> usize {
+    let p = inst.free;
+    if p == 0 {
+        return 0;
+    }
+    let f = Mat::from_fn(p, p, |i, j| inst.m[(i, j)]);
+    let s = f.singular_values().expect("svd");
+    let smax = s.iter().cloned().fold(0.0f64, f64::max);
+    s.iter().filter(|&&v| v > 1e-10 * smax.max(1e-300)).count()
+}
+
+/// Symmetric part of the Schur complement `M_zz - M_zu F^-1 M_uz` positive
+/// definite (smallest eigenvalue above 1e-8 relative): unique `u, z, w`.
+fn reduced_positive_definite(inst: &Instance) -> bool {
+    use faer::linalg::solvers::Solve;
+    let p = inst.free;
+    let n = inst.n();
+    if n == 0 {
+        return true;
+    }
+    let f = Mat::from_fn(p, p, |i, j| inst.m[(i, j)]);
+    let muz = Mat::from_fn(p, n, |i, j| inst.m[(i, p + j)]);
+    let g = if p > 0 {
+        f.partial_piv_lu().solve(muz.as_ref())
+    } else {
+        Mat::zeros(0, n)
+    };
+    let s = Mat::from_fn(n, n, |i, j| {
+        let mut v = inst.m[(p + i, p + j)];
+        for k in 0..p {
+            v -= inst.m[(p + i, k)] * g[(k, j)];
+        }
+        v
+    });
+    let sym = Mat::from_fn(n, n, |i, j| 0.5 * (s[(i, j)] + s[(j, i)]));
+    let scale = (0..n)
+        .flat_map(|i| (0..n).map(move |j| (i, j)))
+        .fold(1.0f64, |a, (i, j)| a.max(sym[(i, j)].abs()));
+    let ev = sym
+        .self_adjoint_eigenvalues(faer::Side::Lower)
+        .expect("eigenvalues");
+    ev.iter().cloned().fold(f64::INFINITY, f64::min) > 1e-8 * scale
+}
+
+// ---------------------------------------------------------------- comparisons
+
+fn solve_with<T: Scalar>(problem: &Plcp<T>, method: Method) -> Result<Path<T>, PlcpError> {
+    plcp::solve(problem, &Settings::with_method(method))
+}
+
+/// Distinct breakpoint parameters (ties within `tol` relative merged).
+fn distinct_lambdas<T: Scalar>(path: &Path<T>, tol: f64) -> Vec<f64> {
+    let mut out: Vec<f64> = Vec::new();
+    for bp in &path.breakpoints {
+        let l = bp.lambda.to_f64();
+        let fresh = match out.last() {
+            None => true,
+            Some(&prev) => (l - prev).abs() > tol * l.abs().max(1.0),
+        };
+        if fresh {
+            out.push(l);
+        }
+    }
+    out
+}
+
+/// Compares two paths of the same problem: status, end, breakpoints (when
+/// `unique`) and the solution at every checked point of either.
+fn compare_paths<T: Scalar>(
+    a: &Path<T>,
+    b: &Path<T>,
+    unique: bool,
+    tol: f64,
+    frac: f64,
+) -> Result<(), String> {
+    if a.status != b.status {
+        return Err(format!(
+            "statuses differ: {:?} ({}) vs {:?} ({})",
+            a.status, a.message, b.status, b.message
+        ));
+    }
+    let lr = |p: &Path<T>| p.lambda_reached.to_f64();
+    if a.status != Status::UnboundedRay && (lr(a) - lr(b)).abs() > tol * lr(a).abs().max(1.0) {
+        return Err(format!("lambda_reached differ: {} vs {}", lr(a), lr(b)));
+    }
+    if unique {
+        let (la, lb) = (distinct_lambdas(a, tol), distinct_lambdas(b, tol));
+        let same = la.len() == lb.len()
+            && la
+                .iter()
+                .zip(lb.iter())
+                .all(|(x, y)| (x - y).abs() <= tol * x.abs().max(1.0));
+        if !same {
+            return Err(format!("breakpoints differ:\n  {la:?}\n  {lb:?}"));
+        }
+    }
+    let mut ls = sample_lambdas(a, frac);
+    ls.extend(sample_lambdas(b, frac));
+    // the two ends agree to `tol` (checked above); sample within both ranges
+    let end = if a.status == Status::UnboundedRay {
+        None
+    } else {
+        Some(a.lambda_reached.min(b.lambda_reached))
+    };
+    for l in ls {
+        let l = match end {
+            Some(e) if l > e => e,
+            _ => l,
+        };
+        let (Some(pa), Some(pb)) = (a.at(l), b.at(l)) else {
+            return Err(format!("L = {}: one path has no point", l.to_f64()));
+        };
+        let dw = rel_dist(pa.w.as_ref(), pb.w.as_ref());
+        let dzu =
+            rel_dist(pa.z.as_ref(), pb.z.as_ref()).max(rel_dist(pa.u.as_ref(), pb.u.as_ref()));
+        if dw > tol || (unique && dzu > tol) {
+            return Err(format!(
+                "L = {}: solutions differ (w by {dw:e}, z/u by {dzu:e}; tol {tol:e})\n  u {:?} / {:?}\n  z {:?} / {:?}\n  w {:?} / {:?}",
+                l.to_f64(),
+                col_f64(pa.u.as_ref()),
+                col_f64(pb.u.as_ref()),
+                col_f64(pa.z.as_ref()),
+                col_f64(pb.z.as_ref()),
+                col_f64(pa.w.as_ref()),
+                col_f64(pb.w.as_ref()),
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// The path's primal solution against Clarabel at every checked point, and its
+/// stop (if any) against Clarabel's unboundedness just beyond.
+fn compare_with_clarabel<T: Scalar>(
+    kkt: &Kkt,
+    path: &Path<T>,
+    points: &[Point<T>],
+    tol: MixedTol,
+) -> Result<(), String> {
+    let unique_x = kkt.unique_x();
+    for pt in points {
+        // where the path stops on a secondary ray, the QP is unbounded just beyond
+        // L*, and the working precision's L* may lie a rounding error beyond the
+        // true one: compare a tolerance inside it instead
+        let l_stop = path.lambda_reached.to_f64();
+        let near_stop = path.status == Status::SecondaryRay
+            && (pt.lambda.to_f64() - l_stop).abs() <= tol.path.lambda * l_stop.abs().max(1.0);
+        let inside;
+        let pt = if near_stop && T::NAME == "f32" {
+            let l_in = T::from_f64(l_stop - 10.0 * tol.path.lambda * l_stop.abs().max(1.0));
+            match path.at(l_in) {
+                Some(p) => {
+                    inside = p;
+                    &inside
+                }
+                None => continue,
+            }
+        } else {
+            pt
+        };
+        let l = pt.lambda.to_f64();
+        let x = kkt.x_of(pt);
+        let xc = kkt
+            .clarabel(l)
+            .map_err(|s| format!("L = {l}: the path has a solution, Clarabel says {s:?}"))?;
+        let (f, fc) = (kkt.objective(&x, l), kkt.objective(&xc, l));
+        if (f - fc).abs() > tol.qp_obj * fc.abs().max(1.0) {
+            return Err(format!(
+                "L = {l}: objective {f} vs Clarabel {fc} (x = {x:?}, Clarabel {xc:?})"
+            ));
+        }
+        let (hx, hxc) = (kkt.hx(&x), kkt.hx(&xc));
+        let scale = hxc.iter().fold(1.0f64, |a, v| a.max(v.abs()));
+        let dh = hx
+            .iter()
+            .zip(hxc.iter())
+            .fold(0.0f64, |a, (u, v)| a.max((u - v).abs()));
+        if dh > tol.qp_x * scale {
+            return Err(format!(
+                "L = {l}: H x differs from Clarabel's by {dh:e} (x = {x:?}, Clarabel {xc:?})"
+            ));
+        }
+        if unique_x {
+            let scale = xc.iter().fold(1.0f64, |a, v| a.max(v.abs()));
+            let dx = x
+                .iter()
+                .zip(xc.iter())
+                .fold(0.0f64, |a, (u, v)| a.max((u - v).abs()));
+            if dx > tol.qp_x * scale {
+                return Err(format!(
+                    "L = {l}: x = {x:?} differs from Clarabel's {xc:?} by {dx:e} (x unique)"
+                ));
+            }
+        }
+    }
+    let stop = match path.status {
+        Status::SecondaryRay => Some(path.lambda_reached.to_f64()),
+        Status::Infeasible => Some(path.lambda0.to_f64()),
+        _ => None,
+    };
+    if let Some(l) = stop {
+        let beyond = if path.status == Status::Infeasible {
+            l
+        } else {
+            l + 1e-2 * (1.0 + l.abs())
+        };
+        match kkt.clarabel(beyond) {
+            Err(SolverStatus::DualInfeasible | SolverStatus::AlmostDualInfeasible) => {}
+            other => {
+                return Err(format!(
+                    "the path stops ({:?}) at L = {l}, but at L = {beyond} Clarabel says {:?}",
+                    path.status,
+                    other.map(|x| format!("solved, x = {x:?}"))
+                ))
+            }
+        }
+    }
+    Ok(())
+}
+
+// ---------------------------------------------------------------- the properties
+
+/// Nonsingular free block: Wolfe and Lemke on the reduction agree; both against Clarabel.
+fn check_nonsingular<T: Scalar>(kkt: &Kkt, tol: MixedTol, frac: f64) -> Result<(), String> {
+    let inst = kkt.instance();
+    let p = inst.free;
+    if free_block_rank(&inst) < p {
+        return Ok(()); // rare degenerate draw: covered by the singular tests
+    }
+    let problem = inst.plcp::<T>();
+    let lemke = solve_with(&problem, Method::Lemke).map_err(|e| format!("Lemke: {e}"))?;
+    let wolfe = solve_with(&problem, Method::Wolfe).map_err(|e| format!("Wolfe: {e}"))?;
+    if wolfe.info.free_block.rank != p
+        || !wolfe.info.free_block.nonbasic_free.is_empty()
+        || !wolfe.info.free_block.dependent_rows.is_empty()
+    {
+        return Err(format!(
+            "Wolfe reports the nonsingular free block as {:?}",
+            wolfe.info.free_block
+        ));
+    }
+    let unique = reduced_positive_definite(&inst);
+    let continuity = if unique {
+        Continuity::All
+    } else {
+        Continuity::W
+    };
+    let pts_l = check_path(&problem, &lemke, tol.path, frac, continuity, true)
+        .map_err(|e| format!("Lemke path: {e}"))?;
+    let pts_w = check_path(&problem, &wolfe, tol.path, frac, continuity, true)
+        .map_err(|e| format!("Wolfe path: {e}"))?;
+    if unique && !lemke.status.is_success() {
+        return Err(format!(
+            "unique solution for every L, but Lemke ends with {:?}: {}",
+            lemke.status, lemke.message
+        ));
+    }
+    compare_paths(&lemke, &wolfe, unique, tol.agree, frac)
+        .map_err(|e| format!("Lemke vs Wolfe: {e}"))?;
+    compare_with_clarabel(kkt, &lemke, &pts_l, tol)
+        .map_err(|e| format!("Lemke vs Clarabel: {e}"))?;
+    compare_with_clarabel(kkt, &wolfe, &pts_w, tol)
+        .map_err(|e| format!("Wolfe vs Clarabel: {e}"))?;
+    Ok(())
+}
+
+/// Singular free block: Lemke refuses with the right rank; Wolfe reports the
+/// block and agrees with Clarabel.
+fn check_singular<T: Scalar>(kkt: &Kkt, tol: MixedTol, frac: f64) -> Result<(), String> {
+    let inst = kkt.instance();
+    let p = inst.free;
+    let rank = free_block_rank(&inst);
+    if rank == p {
+        return Ok(()); // the construction did not make it singular (e.g. a zero row)
+    }
+    let problem = inst.plcp::<T>();
+    match solve_with(&problem, Method::Lemke) {
+        Err(PlcpError::SingularFreeBlock { p: pp, rank: r }) if pp == p && r == rank => {}
+        other => {
+            return Err(format!(
+                "Lemke on a singular free block (p = {p}, rank {rank}): expected Err(SingularFreeBlock), got {:?}",
+                other.map(|path| path.status)
+            ))
+        }
+    }
+    let wolfe = solve_with(&problem, Method::Wolfe).map_err(|e| format!("Wolfe: {e}"))?;
+    let fb = &wolfe.info.free_block;
+    if fb.rank != rank || fb.nonbasic_free.len() != p - rank || fb.dependent_rows.len() != p - rank
+    {
+        return Err(format!(
+            "Wolfe's free block info {fb:?}, expected rank {rank} of {p}"
+        ));
+    }
+    let points = check_path(&problem, &wolfe, tol.path, frac, Continuity::None, true)
+        .map_err(|e| format!("Wolfe path: {e}"))?;
+    compare_with_clarabel(kkt, &wolfe, &points, tol)
+        .map_err(|e| format!("Wolfe vs Clarabel: {e}"))?;
+    Ok(())
+}
+
+fn fail(kkt: &Kkt, prec: &str, e: String) -> TestCaseError {
+    TestCaseError::fail(format!(
+        "[{prec}] {} ({}): {e}\ninstance: {}",
+        kkt.variant,
+        if kkt.instance().free > 0 {
+            "mixed"
+        } else {
+            "standard"
+        },
+        kkt.instance().to_json()
+    ))
+}
+
+fn config(cases: u32) -> ProptestConfig {
+    ProptestConfig {
+        cases,
+        max_shrink_iters: 4096,
+        failure_persistence: Some(Box::new(FileFailurePersistence::Direct(
+            "proptest-regressions/mixed.txt",
+        ))),
+        ..ProptestConfig::default()
+    }
+}
+
+proptest! {
+    #![proptest_config(config(150))]
+
+    #[test]
+    fn f64_nonsingular_wolfe_and_lemke_agree(k in kkt(Free::Nonsingular), frac in 0.0..1.0f64) {
+        check_nonsingular::<f64>(&k, F64, frac).map_err(|e| fail(&k, "f64", e))?;
+    }
+
+    #[test]
+    fn f64_dependent_rows_wolfe_matches_clarabel(k in kkt(Free::DependentRow), frac in 0.0..1.0f64) {
+        check_singular::<f64>(&k, F64, frac).map_err(|e| fail(&k, "f64", e))?;
+    }
+
+    #[test]
+    fn f64_more_rows_than_free_wolfe_matches_clarabel(k in kkt(Free::MoreRowsThanFree), frac in 0.0..1.0f64) {
+        check_singular::<f64>(&k, F64, frac).map_err(|e| fail(&k, "f64", e))?;
+    }
+
+    #[test]
+    fn f64_idle_free_variable_wolfe_matches_clarabel(k in kkt(Free::IdleVariable), frac in 0.0..1.0f64) {
+        check_singular::<f64>(&k, F64, frac).map_err(|e| fail(&k, "f64", e))?;
+    }
+}
+
+proptest! {
+    #![proptest_config(config(48))]
+
+    #[test]
+    fn f32_nonsingular_wolfe_and_lemke_agree(k in kkt(Free::Nonsingular), frac in 0.0..1.0f64) {
+        check_nonsingular::<f32>(&k, F32, frac).map_err(|e| fail(&k, "f32", e))?;
+    }
+
+    #[test]
+    fn f32_singular_wolfe_matches_clarabel(k in kkt(Free::MoreRowsThanFree), frac in 0.0..1.0f64) {
+        check_singular::<f32>(&k, F32, frac).map_err(|e| fail(&k, "f32", e))?;
+    }
+
+    #[test]
+    fn f128_nonsingular_wolfe_and_lemke_agree(k in kkt(Free::Nonsingular), frac in 0.0..1.0f64) {
+        check_nonsingular::<faer::fx128>(&k, F128, frac).map_err(|e| fail(&k, "f128", e))?;
+    }
+
+    #[test]
+    fn f128_singular_wolfe_matches_clarabel(k in kkt(Free::DependentRow), frac in 0.0..1.0f64) {
+        check_singular::<faer::fx128>(&k, F128, frac).map_err(|e| fail(&k, "f128", e))?;
+    }
+}
+
+// ---------------------------------------------------------------- random monotone mixed PLCPs
+
+/// `M = B B' + S + I/8` of order `p + n` (positive definite: nonsingular free
+/// block, unique solution), random `q, d`.
+fn monotone_mixed() -> impl Strategy<Value = Instance> {
+    (1usize..=3, 1usize..=5)
+        .prop_flat_map(|(p, n)| {
+            let dim = p + n;
+            (
+                Just((p, n)),
+                prop::collection::vec(-8i32..=8, dim * dim),
+                prop::collection::vec(-8i32..=8, dim * dim),
+                prop::collection::vec(-64i32..=64, dim),
+                prop::collection::vec(-64i32..=64, dim),
+                prop_oneof![Just(None), (1i32..=64).prop_map(Some)],
+            )
+        })
+        .prop_map(|((p, n), b, s, q, d, lm)| {
+            let dim = p + n;
+            let b: Vec<f64> = b.into_iter().map(|k| dy(k, 8.0)).collect();
+            let s: Vec<f64> = s.into_iter().map(|k| dy(k, 8.0)).collect();
+            Instance {
+                m: monotone(&b, dim, dim, &s, 0.125),
+                q: q.into_iter().map(|k| dy(k, 64.0)).collect(),
+                d: d.into_iter().map(|k| dy(k, 64.0)).collect(),
+                free: p,
+                lambda0: 0.0,
+                lambda_max: lm.map(|k| dy(k, 8.0)),
+                kind: Kind::PositiveDefinite,
+            }
+        })
+}
+
+fn check_monotone_mixed<T: Scalar>(
+    inst: &Instance,
+    tol: MixedTol,
+    frac: f64,
+    oracle_points: usize,
+) -> Result<(), String> {
+    let problem = inst.plcp::<T>();
+    let lemke = solve_with(&problem, Method::Lemke).map_err(|e| format!("Lemke: {e}"))?;
+    if !lemke.status.is_success() {
+        return Err(format!(
+            "Lemke ends with {:?} on a positive definite problem: {}",
+            lemke.status, lemke.message
+        ));
+    }
+    let points = check_path(&problem, &lemke, tol.path, frac, Continuity::All, true)
+        .map_err(|e| format!("Lemke path: {e}"))?;
+    let step = (points.len() / oracle_points.max(1)).max(1);
+    for pt in points.iter().step_by(step) {
+        // the oracle in the working precision, except for f32: there in f64 on
+        // the same (exactly representable) data
+        let r = if T::NAME == "f32" {
+            let pt64 = Point {
+                lambda: pt.lambda.to_f64(),
+                z: col_t::<f64>(&col_f64(pt.z.as_ref())),
+                w: col_t::<f64>(&col_f64(pt.w.as_ref())),
+                u: col_t::<f64>(&col_f64(pt.u.as_ref())),
+            };
+            compare_with_enumeration(
+                &inst.plcp::<f64>(),
+                &pt64,
+                Kind::PositiveDefinite,
+                tol.path.forward,
+                tol.path.enum_feas,
+            )
+        } else {
+            compare_with_enumeration(
+                &problem,
+                pt,
+                Kind::PositiveDefinite,
+                tol.path.forward,
+                tol.path.enum_feas,
+            )
+        };
+        r.map_err(|e| format!("Lemke vs enumeration: {e}"))?;
+    }
+    let wolfe = solve_with(&problem, Method::Wolfe).map_err(|e| format!("Wolfe: {e}"))?;
+    check_path(&problem, &wolfe, tol.path, frac, Continuity::All, true)
+        .map_err(|e| format!("Wolfe path: {e}"))?;
+    compare_paths(&lemke, &wolfe, true, tol.agree, frac)
+        .map_err(|e| format!("Lemke vs Wolfe: {e}"))?;
+    Ok(())
+}
+
+fn fail_inst(inst: &Instance, prec: &str, e: String) -> TestCaseError {
+    TestCaseError::fail(format!("[{prec}] {e}\ninstance: {}", inst.to_json()))
+}
+
+proptest! {
+    #![proptest_config(config(150))]
+
+    #[test]
+    fn f64_monotone_mixed(inst in monotone_mixed(), frac in 0.0..1.0f64) {
+        check_monotone_mixed::<f64>(&inst, F64, frac, usize::MAX).map_err(|e| fail_inst(&inst, "f64", e))?;
+    }
+}
+
+proptest! {
+    #![proptest_config(config(32))]
+
+    #[test]
+    fn f32_monotone_mixed(inst in monotone_mixed(), frac in 0.0..1.0f64) {
+        check_monotone_mixed::<f32>(&inst, F32, frac, usize::MAX).map_err(|e| fail_inst(&inst, "f32", e))?;
+    }
+
+    #[test]
+    fn f128_monotone_mixed(inst in monotone_mixed(), frac in 0.0..1.0f64) {
+        check_monotone_mixed::<faer::fx128>(&inst, F128, frac, 6).map_err(|e| fail_inst(&inst, "f128", e))?;
+    }
+}
+
+// ---------------------------------------------------------------- small fixed cases
+
+/// System (9) in miniature: one free "acceleration" `a` with unit mass, two
+/// compatibility rows (more equality rows than free primal variables, so the
+/// multipliers, the "member forces", are not unique), two plastic multipliers:
+///
+/// minimise 1/2 a^2 - L a + z1 + z2  s.t.  a - z1 = 0,  a - z2 = 0,  z >= 0.
+///
+/// The free block `[[1, 1, 1], [-1, 0, 0], [-1, 0, 0]]` has rank 2. For
+/// `L <= 2` the optimum is `a = z1 = z2 = 0` (rigid); beyond, `a = z1 = z2 =
+/// L - 2`. Wolfe must find the breakpoint at `L = 2`; Lemke must refuse.
+fn tiny_indeterminate<T: Scalar>() {
+    let kkt = Kkt {
+        nf: 1,
+        nb: 2,
+        h: mat_from_rows(&[
+            vec![1.0, 0.0, 0.0],
+            vec![0.0, 0.0, 0.0],
+            vec![0.0, 0.0, 0.0],
+        ]),
+        a: mat_from_rows(&[vec![1.0, -1.0, 0.0], vec![1.0, 0.0, -1.0]]),
+        b: vec![0.0, 0.0],
+        bd: vec![0.0, 0.0],
+        c: vec![0.0, 1.0, 1.0],
+        e: vec![-1.0, 0.0, 0.0],
+        lambda_max: Some(5.0),
+        variant: "tiny indeterminate",
+    };
+    let inst = kkt.instance();
+    assert_eq!(free_block_rank(&inst), 2);
+    let problem = inst.plcp::<T>();
+    match solve_with(&problem, Method::Lemke) {
+        Err(PlcpError::SingularFreeBlock { p: 3, rank: 2 }) => {}
+        other => panic!("[{}] Lemke: {:?}", T::NAME, other.map(|p| p.status)),
+    }
+    let path = solve_with(&problem, Method::Wolfe).unwrap();
+    assert_eq!(
+        path.status,
+        Status::Reached,
+        "[{}] {}",
+        T::NAME,
+        path.message
+    );
+    let tol = match T::NAME {
+        "f32" => 1e-5,
+        "f64" => 1e-12,
+        _ => 1e-28,
+    };
+    for (l, want) in [(1.0, 0.0), (2.0, 0.0), (3.0, 1.0), (5.0, 3.0)] {
+        let pt = path.at(T::from_f64(l)).unwrap();
+        let x = kkt.x_of(&pt);
+        for v in x {
+            assert!(
+                (v - want).abs() <= tol * 10.0,
+                "[{}] L = {l}: x = {:?}, expected all {want}",
+                T::NAME,
+                kkt.x_of(&pt)
+            );
+        }
+    }
+    // x kinks at L = 2: a breakpoint there (others before it may come from the
+    // arbitrary split of the non-unique multipliers y)
+    assert!(
+        path.breakpoints
+            .iter()
+            .any(|bp| (bp.lambda.to_f64() - 2.0).abs() <= tol),
+        "[{}] no breakpoint at L = 2: {:?}",
+        T::NAME,
+        path.breakpoints
+    );
+    let points = check_path(
+        &problem,
+        &path,
+        path_tol_of::<T>(),
+        0.5,
+        Continuity::None,
+        true,
+    )
+    .unwrap_or_else(|e| panic!("[{}] {e}", T::NAME));
+    compare_with_clarabel(
+        &kkt,
+        &path,
+        &points,
+        match T::NAME {
+            "f32" => F32,
+            "f64" => F64,
+            _ => F128,
+        },
+    )
+    .unwrap_or_else(|e| panic!("[{}] {e}", T::NAME));
+}
+
+fn path_tol_of<T: Scalar>() -> Tol {
+    match T::NAME {
+        "f32" => F32.path,
+        "f64" => F64.path,
+        _ => F128.path,
+    }
+}
+
+#[test]
+fn tiny_indeterminate_f32() {
+    tiny_indeterminate::<f32>();
+}
+
+#[test]
+fn tiny_indeterminate_f64() {
+    tiny_indeterminate::<f64>();
+}
+
+#[test]
+fn tiny_indeterminate_f128() {
+    tiny_indeterminate::<faer::fx128>();
+}
+
+/// A standard-form problem (`free = 0`) through both methods: the same path.
+#[test]
+fn standard_form_wolfe_equals_lemke() {
+    let m = mat_from_rows(&[vec![2.0, 1.0], vec![1.0, 2.0]]);
+    let inst = Instance {
+        m,
+        q: vec![1.0, 1.0],
+        d: vec![-1.0, -0.5],
+        free: 0,
+        lambda0: 0.0,
+        lambda_max: None,
+        kind: Kind::PositiveDefinite,
+    };
+    let p = inst.plcp::<f64>();
+    let a = solve_with(&p, Method::Lemke).unwrap();
+    let b = solve_with(&p, Method::Wolfe).unwrap();
+    compare_paths(&a, &b, true, 1e-12, 0.5).unwrap();
+    assert_eq!(b.status, Status::UnboundedRay);
+}
