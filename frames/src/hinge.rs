@@ -237,10 +237,29 @@ pub fn read(frame: &Frame, system: &System, pieces: &[Piece], tolerance: f64) ->
         .flat_map(|p| p.z(p.representative()))
         .fold(0.0f64, |a, v| a.max(v.abs()))
         .max(f64::MIN_POSITIVE);
+    // Pieces shorter than the tolerance (f32 round-off, degenerate steps) are
+    // skipped: their neighbours meet at one breakpoint.
+    let mut view: Vec<(usize, f64, f64)> = Vec::new();
+    for (i, p) in pieces.iter().enumerate() {
+        let long = !p.lambda_to.is_finite()
+            || p.lambda_to - p.lambda_from > tolerance * p.lambda_from.abs().max(1.0);
+        if long {
+            let from = view.last().map(|v| v.2).unwrap_or(p.lambda_from);
+            view.push((i, from, p.lambda_to));
+        }
+    }
+    if view.is_empty() {
+        view = pieces
+            .iter()
+            .enumerate()
+            .map(|(i, p)| (i, p.lambda_from, p.lambda_to))
+            .collect();
+    }
     let mut cache: std::collections::HashMap<Vec<usize>, bool> = std::collections::HashMap::new();
-    let states: Vec<State> = pieces
+    let states: Vec<State> = view
         .iter()
-        .map(|p| {
+        .map(|&(i, _, _)| {
+            let p = &pieces[i];
             let l = p.representative();
             let (z, w) = (p.z(l), p.w(l));
             let mut yield_sign = vec![None; ns];
@@ -285,11 +304,11 @@ pub fn read(frame: &Frame, system: &System, pieces: &[Piece], tolerance: f64) ->
     let mut hinges = Vec::new();
     let Some(kc) = first_flow else {
         // rigid (or moving without hinges) over the whole traced range
-        if let Some(p) = pieces.first() {
+        if let (Some(first), Some(last)) = (view.first(), view.last()) {
             intervals.push(Interval {
-                lambda_from: p.lambda_from,
-                lambda_to: pieces.last().map(|q| q.lambda_to).unwrap_or(p.lambda_to),
-                piece: 0,
+                lambda_from: first.1,
+                lambda_to: last.2,
+                piece: first.0,
                 rigid: true,
                 accelerating: vec![],
                 constant_rate: vec![],
@@ -306,9 +325,9 @@ pub fn read(frame: &Frame, system: &System, pieces: &[Piece], tolerance: f64) ->
     };
     if kc > 0 {
         intervals.push(Interval {
-            lambda_from: pieces[0].lambda_from,
-            lambda_to: pieces[kc].lambda_from,
-            piece: 0,
+            lambda_from: view[0].1,
+            lambda_to: view[kc].1,
+            piece: view[0].0,
             rigid: true,
             accelerating: vec![],
             constant_rate: vec![],
@@ -320,9 +339,8 @@ pub fn read(frame: &Frame, system: &System, pieces: &[Piece], tolerance: f64) ->
     let mut started = vec![false; ng];
     let mut prev_acc: Vec<Option<(usize, Sign)>> = vec![None; ng];
     let mut prev_yield: Vec<Option<(usize, Sign)>> = vec![None; ng];
-    for k in kc..pieces.len() {
+    for (k, &(pk, lambda, lambda_to)) in view.iter().enumerate().skip(kc) {
         let st = &states[k];
-        let lambda = pieces[k].lambda_from;
         let mut events = Vec::new();
         let mut accelerating = Vec::new();
         let mut constant_rate = Vec::new();
@@ -431,8 +449,8 @@ pub fn read(frame: &Frame, system: &System, pieces: &[Piece], tolerance: f64) ->
             });
             intervals.push(Interval {
                 lambda_from: lambda,
-                lambda_to: pieces[k].lambda_to,
-                piece: k,
+                lambda_to,
+                piece: pk,
                 rigid: false,
                 accelerating,
                 constant_rate,

@@ -466,15 +466,11 @@ impl Analysis {
             .filter(|&i| fr.nodes[i].mass > 0.0 || fr.nodes[i].inertia > 0.0)
             .collect();
         for (iv, r) in self.reading.intervals.iter().zip(&self.response.intervals) {
-            let range = format!(
-                "[{}, {}]",
-                fmt_g(iv.lambda_from),
-                if iv.lambda_to.is_finite() {
-                    fmt_g(iv.lambda_to)
-                } else {
-                    "inf)".trim_end_matches(')').to_string() + ")"
-                }
-            );
+            let range = if iv.lambda_to.is_finite() {
+                format!("[{}, {}]", fmt_g(iv.lambda_from), fmt_g(iv.lambda_to))
+            } else {
+                format!("[{}, inf)", fmt_g(iv.lambda_from))
+            };
             if iv.rigid {
                 let _ = writeln!(s, "  {range:<24} rigid (no plastic flow)");
                 continue;
@@ -501,18 +497,21 @@ impl Analysis {
                 r.residual.worst()
             );
             if massive.len() <= 8 {
+                // round-off below 1e-12 of the largest coefficient prints as 0
+                let scale = massive
+                    .iter()
+                    .flat_map(|&i| r.accelerations[i].iter().flatten().map(|v| v.abs()))
+                    .fold(0.0f64, f64::max);
+                let snap = |v: f64| if v.abs() <= 1e-12 * scale { 0.0 } else { v };
                 for &i in &massive {
                     let a = r.accelerations[i];
                     let comps: Vec<String> = Component::ALL
                         .iter()
-                        .filter(|c| a[c.index()] != [0.0, 0.0])
-                        .map(|c| {
-                            format!(
-                                "{} = {} + {} L",
-                                c.as_str(),
-                                fmt_g(a[c.index()][0]),
-                                fmt_g(a[c.index()][1])
-                            )
+                        .map(|c| (c, snap(a[c.index()][0]), snap(a[c.index()][1])))
+                        .filter(|(_, b, sl)| *b != 0.0 || *sl != 0.0)
+                        .map(|(c, b, sl)| {
+                            let sign = if sl < 0.0 { "-" } else { "+" };
+                            format!("{} = {} {sign} {} L", c.as_str(), fmt_g(b), fmt_g(sl.abs()))
                         })
                         .collect();
                     if !comps.is_empty() {
