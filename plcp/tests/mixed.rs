@@ -282,6 +282,7 @@ fn dy(k: i32, denom: f64) -> f64 {
 
 /// How the free block is made singular (or not).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[allow(clippy::enum_variant_names)] // MoreRowsThanFree reads as meant
 enum Free {
     /// `A_f` of full row rank, `H_ff` generic: nonsingular.
     Nonsingular,
@@ -350,9 +351,8 @@ fn kkt(free: Free) -> impl Strategy<Value = Kkt> {
                         }
                     }
                     Free::IdleVariable => {
-                        for k in 0..r {
-                            bmat[k] = 0.0;
-                        }
+                        // row 0 of B: x_f0 has no curvature
+                        bmat[..r].fill(0.0);
                         for kk in 0..m {
                             a[(kk, 0)] = 0.0;
                         }

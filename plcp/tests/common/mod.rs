@@ -285,7 +285,7 @@ pub fn enumerate<T: Scalar>(
             let umax = (0..k).fold(0.0f64, |acc, i| acc.max(u[(i, i)].to_f64().abs()));
             let umin = (0..k).fold(f64::INFINITY, |acc, i| acc.min(u[(i, i)].to_f64().abs()));
             let thresh = 1e3 * (k as f64) * T::eps().to_f64() * umax;
-            if !(umax > 0.0) || umin <= thresh {
+            if umax.is_nan() || umax <= 0.0 || umin <= thresh {
                 continue;
             }
             let rhs = Col::from_fn(k, |i| -r[idx[i]]);
@@ -302,7 +302,7 @@ pub fn enumerate<T: Scalar>(
                 let row = p + i;
                 let mut acc = r[row];
                 for j in 0..dim {
-                    acc = acc + m[(row, j)] * x[j];
+                    acc += m[(row, j)] * x[j];
                 }
                 acc
             }
@@ -649,14 +649,12 @@ pub fn check_path<T: Scalar>(
     };
     // status and range
     match (path.status, problem.lambda_max()) {
-        (Status::Reached, Some(lm)) => {
-            if !near(path.lambda_reached, lm) {
-                return Err(format!(
-                    "Reached but lambda_reached = {} != lambda_max = {}",
-                    path.lambda_reached.to_f64(),
-                    lm.to_f64()
-                ));
-            }
+        (Status::Reached, Some(lm)) if !near(path.lambda_reached, lm) => {
+            return Err(format!(
+                "Reached but lambda_reached = {} != lambda_max = {}",
+                path.lambda_reached.to_f64(),
+                lm.to_f64()
+            ));
         }
         (Status::Reached, None) => {
             return Err("status Reached with an infinite lambda_max".into());
@@ -673,10 +671,8 @@ pub fn check_path<T: Scalar>(
                 return Err("UnboundedRay without a ray".into());
             }
         }
-        (Status::SecondaryRay, _) => {
-            if path.ray.is_none() {
-                return Err("SecondaryRay without a ray".into());
-            }
+        (Status::SecondaryRay, _) if path.ray.is_none() => {
+            return Err("SecondaryRay without a ray".into());
         }
         _ => {}
     }
@@ -749,7 +745,7 @@ pub fn check_path<T: Scalar>(
                 }
             }
         }
-        if k == 0 && !near(s.lambda_from, problem.lambda0()) && !(path.info.turning_points > 0) {
+        if k == 0 && !near(s.lambda_from, problem.lambda0()) && path.info.turning_points == 0 {
             return Err(format!(
                 "the first segment starts at {} not at lambda0 = {}",
                 s.lambda_from.to_f64(),
