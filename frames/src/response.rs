@@ -78,11 +78,8 @@ fn to_nodes(frame: &Frame, system: &System, q: &[f64]) -> Vec<[f64; 3]> {
     out
 }
 
-/// The residual of the mixed PLCP at `lambda` on a piece.
-pub fn residual_at(system: &System, piece: &Piece, lambda: f64) -> Residual {
-    let Ok(problem) = system.plcp::<f64>(None) else {
-        return Residual::default();
-    };
+/// The residual of the mixed PLCP (`system.plcp::<f64>(None)`) at `lambda` on a piece.
+pub fn residual_at(problem: &plcp::Plcp<f64>, piece: &Piece, lambda: f64) -> Residual {
     let col = |v: Vec<f64>| Col::from_fn(v.len(), |i| v[i]);
     let point = Point {
         lambda,
@@ -90,7 +87,7 @@ pub fn residual_at(system: &System, piece: &Piece, lambda: f64) -> Residual {
         w: col(piece.w(lambda)),
         u: col(piece.u(lambda)),
     };
-    plcp::residual::residual(&problem, &point)
+    plcp::residual::residual(problem, &point)
 }
 
 /// The affine accelerations of an interval (zero in the rigid phase).
@@ -131,6 +128,7 @@ pub fn build(
     times: &[f64],
 ) -> Response {
     let ns = system.sections.len();
+    let problem = system.plcp::<f64>(None).ok();
     let mut intervals = Vec::new();
     let mut affine_pieces = Vec::new();
     for iv in &reading.intervals {
@@ -150,8 +148,10 @@ pub fn build(
             p.lambda_from >= iv.lambda_from
                 && p.lambda_from < iv.lambda_to.max(iv.lambda_from + f64::MIN_POSITIVE)
         }) {
-            res = res.max(residual_at(system, p, p.lambda_from));
-            res = res.max(residual_at(system, p, p.representative()));
+            if let Some(problem) = &problem {
+                res = res.max(residual_at(problem, p, p.lambda_from));
+                res = res.max(residual_at(problem, p, p.representative()));
+            }
         }
         intervals.push(IntervalResponse {
             lambda_from: iv.lambda_from,
