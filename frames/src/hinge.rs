@@ -228,6 +228,58 @@ fn stress_unique(system: &System, pinned: &[usize]) -> bool {
     null_space(&m).0 == ns
 }
 
+/// Where the stress is not unique and a section that has flowed appears off
+/// yield, asks whether some admissible stress state keeps every flowed section
+/// at yield ([`crate::stress`]); if so, the section is read as at yield (a
+/// choice of the solver, not a deactivation).
+fn restore_yield(
+    system: &System,
+    pieces: &[Piece],
+    view: &[(usize, f64, f64)],
+    states: &mut [State],
+) {
+    let ns = system.sections.len();
+    let nb = system.coordinates.len();
+    let mut flowed: Vec<Option<Sign>> = vec![None; ns];
+    for (k, &(pk, from, to)) in view.iter().enumerate() {
+        for s in 0..ns {
+            if let Some(sign) = states[k].acc_sign[s] {
+                flowed[s] = Some(sign);
+            }
+        }
+        if states[k].unique {
+            continue;
+        }
+        let lost: Vec<usize> = (0..ns)
+            .filter(|&s| flowed[s].is_some() && states[k].yield_sign[s].is_none())
+            .collect();
+        if lost.is_empty() {
+            continue;
+        }
+        let pinned: Vec<(usize, Sign)> =
+            (0..ns).filter_map(|s| flowed[s].map(|g| (s, g))).collect();
+        let piece = &pieces[pk];
+        let rep = piece.representative();
+        let lambdas: Vec<f64> = if to.is_finite() {
+            vec![from, to]
+        } else {
+            vec![from, rep, 2.0 * rep]
+        };
+        let ok = lambdas.iter().all(|&l| {
+            let u = piece.u(l);
+            let rhs: Vec<f64> = (0..nb)
+                .map(|j| system.load[j] * l - system.mass[j] * u[j])
+                .collect();
+            crate::stress::admissible_with(system, &rhs, &pinned) == Some(true)
+        });
+        if ok {
+            for s in lost {
+                states[k].yield_sign[s] = flowed[s];
+            }
+        }
+    }
+}
+
 /// Reads the pieces of a path as hinge events.
 pub fn read(frame: &Frame, system: &System, pieces: &[Piece], tolerance: f64) -> Reading {
     let (groups, group_of) = groups(frame, system);
@@ -256,7 +308,7 @@ pub fn read(frame: &Frame, system: &System, pieces: &[Piece], tolerance: f64) ->
             .collect();
     }
     let mut cache: std::collections::HashMap<Vec<usize>, bool> = std::collections::HashMap::new();
-    let states: Vec<State> = view
+    let mut states: Vec<State> = view
         .iter()
         .map(|&(i, _, _)| {
             let p = &pieces[i];
@@ -284,6 +336,7 @@ pub fn read(frame: &Frame, system: &System, pieces: &[Piece], tolerance: f64) ->
             }
         })
         .collect();
+    restore_yield(system, pieces, &view, &mut states);
     let group_state = |st: &State, g: usize| -> (Option<(usize, Sign)>, Option<(usize, Sign)>) {
         let y = groups[g]
             .sections
@@ -432,14 +485,14 @@ pub fn read(frame: &Frame, system: &System, pieces: &[Piece], tolerance: f64) ->
             && same_mechanism
             && same_acceleration(
                 system,
-                &pieces[intervals.last().map(|i| i.piece).unwrap_or(k)],
-                &pieces[k],
+                &pieces[intervals.last().map(|i| i.piece).unwrap_or(pk)],
+                &pieces[pk],
                 tolerance,
             )
         {
             // nothing observable changed (a pivot on non-unique forces): extend
             if let Some(iv) = intervals.last_mut() {
-                iv.lambda_to = pieces[k].lambda_to;
+                iv.lambda_to = lambda_to;
             }
         } else {
             breakpoints.push(EventPoint {

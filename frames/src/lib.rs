@@ -11,6 +11,7 @@ pub mod plot;
 pub mod report;
 pub mod response;
 pub mod solve;
+pub mod stress;
 pub use analysis::{Analysis, AnalysisOptions};
 pub use assemble::System;
 pub use error::FramesError;

@@ -1,0 +1,92 @@
+//! Statically admissible stress states, for the pieces of the path where the
+//! member forces are not unique.
+//!
+//! There the solver holds one stress state among many, and a hinge that has
+//! flowed may appear to leave yield only because of that choice (system (9)
+//! asks `y*' x*_dd = 0`, not `y* = 0` where the plastic rate is positive). Before a
+//! deactivation is reported, a linear feasibility problem asks whether some
+//! stress state keeps every flowed section at yield:
+//!
+//! ```text
+//! find X:   A^T X = a_o Lambda - M_q q_dd(Lambda)       (dynamic equilibrium)
+//!           m_k = sign_k Mp_k   for every section that has flowed
+//!           -Mp_k <= m_k <= Mp_k for every section
+//! ```
+//!
+//! solved by Clarabel (an interior-point solver) at the ends of the piece;
+//! the feasible set moves affinely with `Lambda`, so feasibility at both ends
+//! holds in between.
+
+use crate::assemble::{MemberForce, Sign, System};
+use clarabel::algebra::CscMatrix;
+use clarabel::solver::{
+    DefaultSettingsBuilder, DefaultSolver, IPSolver, NonnegativeConeT, SolverStatus,
+    SupportedConeT, ZeroConeT,
+};
+
+/// Whether a stress state exists in equilibrium with `rhs` (`a_o Lambda - M_q
+/// q_dd`), within yield everywhere and at yield with the given sign at every
+/// `pinned` section. `None` if the solver could not decide.
+pub fn admissible_with(system: &System, rhs: &[f64], pinned: &[(usize, Sign)]) -> Option<bool> {
+    let (nb, ns) = (system.coordinates.len(), system.forces.len());
+    let (mut ii, mut jj, mut vv) = (Vec::new(), Vec::new(), Vec::new());
+    let mut b = Vec::new();
+    // equilibrium rows: A^T X = rhs
+    for j in 0..nb {
+        for r in 0..ns {
+            let v = system.a[(r, j)];
+            if v != 0.0 {
+                ii.push(j);
+                jj.push(r);
+                vv.push(v);
+            }
+        }
+        b.push(rhs[j]);
+    }
+    let mut row = nb;
+    for &(k, sign) in pinned {
+        let Some(r) = system
+            .forces
+            .iter()
+            .position(|f| *f == MemberForce::Moment(k))
+        else {
+            continue;
+        };
+        ii.push(row);
+        jj.push(r);
+        vv.push(1.0);
+        let mp = system.sections[k].plastic_moment;
+        b.push(if sign == Sign::Positive { mp } else { -mp });
+        row += 1;
+    }
+    let zero_rows = row;
+    for (r, f) in system.forces.iter().enumerate() {
+        if let MemberForce::Moment(k) = *f {
+            let mp = system.sections[k].plastic_moment;
+            for s in [1.0, -1.0] {
+                ii.push(row);
+                jj.push(r);
+                vv.push(s);
+                b.push(mp);
+                row += 1;
+            }
+        }
+    }
+    let a = CscMatrix::new_from_triplets(row, ns, ii, jj, vv);
+    let p = CscMatrix::<f64>::zeros((ns, ns));
+    let q = vec![0.0; ns];
+    let cones: Vec<SupportedConeT<f64>> =
+        vec![ZeroConeT(zero_rows), NonnegativeConeT(row - zero_rows)];
+    let settings = DefaultSettingsBuilder::default()
+        .verbose(false)
+        .max_iter(200)
+        .build()
+        .ok()?;
+    let mut solver = DefaultSolver::new(&p, &q, &a, &b, &cones, settings).ok()?;
+    solver.solve();
+    match solver.solution.status {
+        SolverStatus::Solved | SolverStatus::AlmostSolved => Some(true),
+        SolverStatus::PrimalInfeasible | SolverStatus::AlmostPrimalInfeasible => Some(false),
+        _ => None,
+    }
+}
