@@ -60,7 +60,7 @@ impl Analysis {
     /// ```
     pub fn run(scene: Scene, options: &AnalysisOptions) -> Result<Analysis, FramesError> {
         if let Some(t) = options.t_end {
-            if !(t > 0.0) || !t.is_finite() {
+            if t.is_nan() || t <= 0.0 || !t.is_finite() {
                 return Err(FramesError::invalid(
                     "t_end",
                     format!("must be positive and finite, got {t}"),

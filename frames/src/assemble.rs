@@ -400,12 +400,8 @@ impl System {
             loads_on_supports: f.loads_on_supports.clone(),
             ..LeftOut::default()
         };
-        for j in 0..nb {
-            if !keep[j] {
-                left_out
-                    .decoupled_coordinates
-                    .push((f.coords[j].node, f.coords[j].component));
-            }
+        for (co, _) in f.coords.iter().zip(&keep).filter(|(_, k)| !**k) {
+            left_out.decoupled_coordinates.push((co.node, co.component));
         }
         for r in 0..ns {
             if !keep[nb + r] {

@@ -242,9 +242,9 @@ fn restore_yield(
     let nb = system.coordinates.len();
     let mut flowed: Vec<Option<Sign>> = vec![None; ns];
     for (k, &(pk, from, to)) in view.iter().enumerate() {
-        for s in 0..ns {
-            if let Some(sign) = states[k].acc_sign[s] {
-                flowed[s] = Some(sign);
+        for (f, a) in flowed.iter_mut().zip(&states[k].acc_sign) {
+            if a.is_some() {
+                *f = *a;
             }
         }
         if states[k].unique {
@@ -337,7 +337,8 @@ pub fn read(frame: &Frame, system: &System, pieces: &[Piece], tolerance: f64) ->
         })
         .collect();
     restore_yield(system, pieces, &view, &mut states);
-    let group_state = |st: &State, g: usize| -> (Option<(usize, Sign)>, Option<(usize, Sign)>) {
+    type SectionSign = Option<(usize, Sign)>;
+    let group_state = |st: &State, g: usize| -> (SectionSign, SectionSign) {
         let y = groups[g]
             .sections
             .iter()

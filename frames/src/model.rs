@@ -496,7 +496,7 @@ impl Scene {
             let (a, b) = (&frame.nodes[from], &frame.nodes[to]);
             let (dx, dy) = (b.x - a.x, b.y - a.y);
             let length = dx.hypot(dy);
-            if !(length > 0.0) || !length.is_finite() {
+            if length.is_nan() || length <= 0.0 || !length.is_finite() {
                 return cx.err(
                     m.to.span(),
                     format!("member \"{id}\" to"),

@@ -364,7 +364,8 @@ fn moments(a: &Analysis, dir: &Path) -> Result<Vec<PathBuf>, FramesError> {
         .iter()
         .fold(0.0f64, |m, e| m.max(e.plastic_moment));
     let diagrams = &a.response.moments_at_breakpoints;
-    let mut curves: Vec<(f64, Vec<Vec<(f64, f64)>>)> = Vec::new();
+    type Polyline = Vec<(f64, f64)>;
+    let mut curves: Vec<(f64, Vec<Polyline>)> = Vec::new();
     for d in diagrams {
         let mut per_member = Vec::new();
         for (mi, m) in fr.members.iter().enumerate() {

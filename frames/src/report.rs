@@ -391,6 +391,13 @@ impl Analysis {
             self.solution.status.as_str(),
             info.residual.worst()
         );
+        if info.residual.worst() > 1e-8 {
+            let _ = writeln!(
+                s,
+                "  WARNING: the solver's path does not satisfy system (9) (residual {:.1e}): do not trust the numbers below",
+                info.residual.worst()
+            );
+        }
         if !self.solution.status.is_success() {
             let _ = writeln!(
                 s,
@@ -535,13 +542,12 @@ impl Analysis {
             let d = t.displacement[k][far.0];
             let _ = writeln!(
                 s,
-                "at t = {} (lambda = {}): largest displacement at {}: x = {}, y = {}  [{}]",
+                "at t = {} (lambda = {}): largest displacement at {}: x = {}, y = {}  [integration exact on each piece]",
                 fmt_g(t_end),
                 fmt_g(t.lambda[k]),
                 fr.nodes[far.0].id,
                 fmt_g(d[0]),
                 fmt_g(d[1]),
-                "integration exact on each piece"
             );
         }
         s

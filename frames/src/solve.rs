@@ -140,7 +140,7 @@ fn solve_in<T: Scalar>(system: &System, options: &SolveOptions) -> Result<Soluti
 /// path itself is a [`Status`] in the solution.
 pub fn solve(system: &System, options: &SolveOptions) -> Result<Solution, FramesError> {
     if let Some(l) = options.lambda_max {
-        if !(l > 0.0) || l.is_nan() {
+        if l.is_nan() || l <= 0.0 {
             return Err(FramesError::invalid(
                 "lambda_max",
                 format!("must be positive, got {l}"),

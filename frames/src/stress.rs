@@ -32,7 +32,7 @@ pub fn admissible_with(system: &System, rhs: &[f64], pinned: &[(usize, Sign)]) -
     let (mut ii, mut jj, mut vv) = (Vec::new(), Vec::new(), Vec::new());
     let mut b = Vec::new();
     // equilibrium rows: A^T X = rhs
-    for j in 0..nb {
+    for (j, &rj) in rhs.iter().enumerate().take(nb) {
         for r in 0..ns {
             let v = system.a[(r, j)];
             if v != 0.0 {
@@ -41,7 +41,7 @@ pub fn admissible_with(system: &System, rhs: &[f64], pinned: &[(usize, Sign)]) -
                 vv.push(v);
             }
         }
-        b.push(rhs[j]);
+        b.push(rj);
     }
     let mut row = nb;
     for &(k, sign) in pinned {

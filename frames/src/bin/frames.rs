@@ -105,7 +105,7 @@ fn run(cli: Cli) -> Result<(), FramesError> {
         }
         Command::Export { scene, lambda_max } => {
             if let Some(l) = lambda_max {
-                if !(l > 0.0) {
+                if l.is_nan() || l <= 0.0 {
                     return Err(FramesError::Invalid {
                         what: "lambda_max".into(),
                         why: format!("must be positive, got {l}"),
