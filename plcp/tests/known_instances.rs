@@ -196,6 +196,7 @@ in_three_precisions! {
     secondary_ray_beyond_l_star => secondary_ray;
     unbounded_ray_and_reached => unbounded_and_reached;
     infeasible_at_start => infeasible_start;
+    widely_scaled_d_keeps_every_breakpoint => widely_scaled_d;
     invalid_settings_are_errors => invalid_settings;
     construction_errors_name_the_input => construction_errors;
 }
@@ -684,6 +685,34 @@ fn unbounded_and_reached<T: Scalar>() {
         tol::<T>(),
     );
     assert_close("end z", &path.end.z, &[3.0], tol::<T>());
+}
+
+/// `M = I`, `q = e`, `d = (-1, -1e-3)`: breakpoints at `L = 1` and `L = 1000`. A
+/// slope a thousand times smaller than the other is far above any precision's
+/// rounding (f32 included) and must not be taken for zero: missing the second
+/// breakpoint would claim an unbounded ray on which `w1` goes negative.
+fn widely_scaled_d<T: Scalar>() {
+    let m = mat_from_rows(&[vec![1.0, 0.0], vec![0.0, 1.0]]);
+    let p = plcp_of::<T>(&m, &[1.0, 1.0], &[-1.0, -1e-3], None);
+    let path = plcp::solve(&p, &Settings::default()).unwrap();
+    assert_eq!(
+        path.status,
+        Status::UnboundedRay,
+        "[{}] {}",
+        T::NAME,
+        path.message
+    );
+    let ls: Vec<f64> = path.breakpoints.iter().map(|b| b.lambda.to_f64()).collect();
+    assert_eq!(
+        ls.len(),
+        2,
+        "[{}] breakpoints at {ls:?}, expected 1 and 1000",
+        T::NAME
+    );
+    assert!((ls[0] - 1.0).abs() <= tol::<T>() && (ls[1] - 1000.0).abs() <= 1000.0 * tol::<T>());
+    let pt = path.at(T::from_f64(3000.0)).unwrap();
+    assert_close("z(3000)", &pt.z, &[2999.0, 2.0], tol::<T>());
+    assert_close("w(3000)", &pt.w, &[0.0, 0.0], tol::<T>());
 }
 
 /// `M = [[0, 0], [0, 1]]`, `q = (-1, 1)`: row 0 reads `w0 = -1`, for every `L` (d = 0).

@@ -46,8 +46,11 @@
 //!   Lemke's path against enumeration of the complementary bases with the free
 //!   variables solved for; Wolfe, which claims monotone problems, must succeed
 //!   and agree.
-//! * f32 (agreement 2e-3, residual 2e-5, Clarabel 2e-3) and fx128 (agreement
+//! * f32 (agreement 2e-3, residual 1e-3, Clarabel 2e-3) and fx128 (agreement
 //!   1e-22, residual 1e-27, Clarabel as f64).
+//!
+//! The residual, forward and agreement tolerances above hold for free blocks with
+//! condition number up to 100 and grow in proportion beyond (see `for_conditioning`).
 
 mod common;
 
@@ -84,7 +87,8 @@ const F64: MixedTol = MixedTol {
 };
 const F32: MixedTol = MixedTol {
     path: Tol {
-        residual: 2e-5,
+        // ten times the default tie tolerance 1e3 * eps (see prop_path.rs)
+        residual: 1e-3,
         forward: 2e-3,
         enum_feas: 1e-9,
         lambda: 1e-4,
@@ -418,6 +422,45 @@ fn free_block_rank(inst: &Instance) -> usize {
     s.iter().filter(|&&v| v > 1e-10 * smax.max(1e-300)).count()
 }
 
+/// Condition number of the free block on its range: `s_1 / s_r` (singular values,
+/// `r` the numerical rank); 1 without free variables.
+fn free_block_condition(inst: &Instance) -> f64 {
+    let p = inst.free;
+    if p == 0 {
+        return 1.0;
+    }
+    let f = Mat::from_fn(p, p, |i, j| inst.m[(i, j)]);
+    let s = f.singular_values().expect("svd");
+    let smax = s.iter().cloned().fold(0.0f64, f64::max);
+    let smin = s
+        .iter()
+        .cloned()
+        .filter(|&v| v > 1e-10 * smax.max(1e-300))
+        .fold(f64::INFINITY, f64::min);
+    if smin.is_finite() {
+        smax / smin
+    } else {
+        1.0
+    }
+}
+
+/// The stated tolerances hold for a free block with condition number up to 100;
+/// beyond, the residual, forward and agreement tolerances grow with it (the
+/// free variables are solved through that block: errors of `cond * eps` are the
+/// precision's, not the method's).
+fn for_conditioning(tol: MixedTol, inst: &Instance) -> MixedTol {
+    let f = (free_block_condition(inst) / 100.0).max(1.0);
+    MixedTol {
+        path: Tol {
+            residual: tol.path.residual * f,
+            forward: tol.path.forward * f,
+            ..tol.path
+        },
+        agree: tol.agree * f,
+        ..tol
+    }
+}
+
 /// Symmetric part of the Schur complement `M_zz - M_zu F^-1 M_uz` positive
 /// definite (smallest eigenvalue above 1e-8 relative): unique `u, z, w`.
 fn reduced_positive_definite(inst: &Instance) -> bool {
@@ -547,6 +590,7 @@ fn compare_with_clarabel<T: Scalar>(
     tol: MixedTol,
 ) -> Result<(), String> {
     let unique_x = kkt.unique_x();
+    let mut undecided = 0;
     for pt in points {
         // where the path stops on a secondary ray, the QP is unbounded just beyond
         // L*, and the working precision's L* may lie a rounding error beyond the
@@ -569,9 +613,23 @@ fn compare_with_clarabel<T: Scalar>(
         };
         let l = pt.lambda.to_f64();
         let x = kkt.x_of(pt);
-        let xc = kkt
-            .clarabel(l)
-            .map_err(|s| format!("L = {l}: the path has a solution, Clarabel says {s:?}"))?;
+        let xc = match kkt.clarabel(l) {
+            Ok(xc) => xc,
+            // the oracle fails numerically (near-degenerate QP): no verdict here
+            Err(
+                SolverStatus::InsufficientProgress
+                | SolverStatus::MaxIterations
+                | SolverStatus::NumericalError,
+            ) => {
+                undecided += 1;
+                continue;
+            }
+            Err(s) => {
+                return Err(format!(
+                    "L = {l}: the path has a solution, Clarabel says {s:?}"
+                ))
+            }
+        };
         let (f, fc) = (kkt.objective(&x, l), kkt.objective(&xc, l));
         if (f - fc).abs() > tol.qp_obj * fc.abs().max(1.0) {
             return Err(format!(
@@ -602,6 +660,12 @@ fn compare_with_clarabel<T: Scalar>(
             }
         }
     }
+    if !points.is_empty() && undecided == points.len() {
+        return Err(format!(
+            "Clarabel could decide none of the {} points",
+            points.len()
+        ));
+    }
     let stop = match path.status {
         Status::SecondaryRay => Some(path.lambda_reached.to_f64()),
         Status::Infeasible => Some(path.lambda0.to_f64()),
@@ -615,6 +679,16 @@ fn compare_with_clarabel<T: Scalar>(
         };
         match kkt.clarabel(beyond) {
             Err(SolverStatus::DualInfeasible | SolverStatus::AlmostDualInfeasible) => {}
+            // the oracle cannot decide (it fails numerically on some unbounded
+            // QPs with singular H): no verdict either way
+            Err(
+                SolverStatus::InsufficientProgress
+                | SolverStatus::MaxIterations
+                | SolverStatus::NumericalError,
+            ) => {}
+            // a "solution" of norm 1e6 on O(1) data is the iterates running off
+            // along a direction of unboundedness
+            Ok(x) if x.iter().fold(0.0f64, |a, v| a.max(v.abs())) > 1e6 => {}
             other => {
                 return Err(format!(
                     "the path stops ({:?}) at L = {l}, but at L = {beyond} Clarabel says {:?}",
@@ -632,6 +706,7 @@ fn compare_with_clarabel<T: Scalar>(
 /// Nonsingular free block: Wolfe and Lemke on the reduction agree; both against Clarabel.
 fn check_nonsingular<T: Scalar>(kkt: &Kkt, tol: MixedTol, frac: f64) -> Result<(), String> {
     let inst = kkt.instance();
+    let tol = for_conditioning(tol, &inst);
     let p = inst.free;
     if free_block_rank(&inst) < p {
         return Ok(()); // rare degenerate draw: covered by the singular tests
@@ -677,6 +752,7 @@ fn check_nonsingular<T: Scalar>(kkt: &Kkt, tol: MixedTol, frac: f64) -> Result<(
 /// block and agrees with Clarabel.
 fn check_singular<T: Scalar>(kkt: &Kkt, tol: MixedTol, frac: f64) -> Result<(), String> {
     let inst = kkt.instance();
+    let tol = for_conditioning(tol, &inst);
     let p = inst.free;
     let rank = free_block_rank(&inst);
     if rank == p {
@@ -818,6 +894,7 @@ fn check_monotone_mixed<T: Scalar>(
     frac: f64,
     oracle_points: usize,
 ) -> Result<(), String> {
+    let tol = for_conditioning(tol, inst);
     let problem = inst.plcp::<T>();
     let lemke = solve_with(&problem, Method::Lemke).map_err(|e| format!("Lemke: {e}"))?;
     if !lemke.status.is_success() {

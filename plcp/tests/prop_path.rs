@@ -29,8 +29,13 @@
 //! | precision | residual | forward (oracle, continuity) | oracle feasibility |
 //! |---|---|---|---|
 //! | f64 | 1e-11 | 1e-8 | 1e-9 |
-//! | f32 | 2e-5 | 2e-3 (well-conditioned classes only) | 1e-9 (oracle in f64) |
+//! | f32 | 1e-3 | 2e-3 (well-conditioned classes only) | 1e-9 (oracle in f64) |
 //! | fx128 | 1e-27 | 1e-22 | 1e-24 |
+//!
+//! The f32 residual tolerance is ten times the default tie tolerance
+//! (`tie_tol_eps * eps = 1e3 * 1.2e-7`): ratios that close count as ties, so a
+//! variable may end a step that much below zero (relative). In f64 and fx128 the
+//! tie tolerance is far below the residual tolerance.
 
 mod common;
 
@@ -47,7 +52,7 @@ const TOL_F64: Tol = Tol {
     lambda: 1e-9,
 };
 const TOL_F32: Tol = Tol {
-    residual: 2e-5,
+    residual: 1e-3,
     forward: 2e-3,
     enum_feas: 1e-9,
     lambda: 1e-4,
@@ -308,7 +313,7 @@ fn config(cases: u32) -> ProptestConfig {
 }
 
 proptest! {
-    #![proptest_config(config(200))]
+    #![proptest_config(config(300))]
 
     #[test]
     fn f64_positive_definite(inst in positive_definite(0.125), frac in 0.0..1.0f64) {
@@ -327,7 +332,7 @@ proptest! {
 }
 
 proptest! {
-    #![proptest_config(config(100))]
+    #![proptest_config(config(150))]
 
     // f32: well-conditioned classes only (M = B B' + S + I/2, diagonally dominant
     // P-matrices), the oracle in f64 on the same (exactly representable) data.
@@ -343,7 +348,7 @@ proptest! {
 }
 
 proptest! {
-    #![proptest_config(config(32))]
+    #![proptest_config(config(64))]
 
     // fx128: the oracle in fx128 too (at 6 of the checked points: enumeration in
     // double-double is slow).

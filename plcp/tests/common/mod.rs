@@ -576,6 +576,47 @@ pub struct Tol {
     pub lambda: f64,
 }
 
+/// The largest 2-norm condition number (f64 SVD) of the basis matrices of the
+/// path's segments, in the unreduced system: columns `e_(p+i)` for `w_i`,
+/// `M[:, p+i]` for `z_i`, `M[:, j]` for `u_j`, `e_k` for the artificial variable
+/// of row `k`; a basis that lists no free variables (Lemke on the reduction)
+/// holds them all.
+pub fn max_basis_condition<T: Scalar>(problem: &Plcp<T>, path: &Path<T>) -> f64 {
+    let p = problem.free();
+    let dim = problem.dim();
+    let m = problem.m();
+    let mut worst = 1.0f64;
+    for s in &path.segments {
+        let mut vars = s.basis.clone();
+        if !vars
+            .iter()
+            .any(|v| matches!(v, Var::U(_) | Var::Artificial(_)))
+        {
+            vars.extend((0..p).map(Var::U));
+        }
+        if vars.len() != dim {
+            continue;
+        }
+        let b = Mat::from_fn(dim, dim, |r, c| match vars[c] {
+            Var::W(i) => f64::from(u8::from(r == p + i)),
+            Var::Z(i) => m[(r, p + i)].to_f64(),
+            Var::U(j) => m[(r, j)].to_f64(),
+            Var::Artificial(k) => f64::from(u8::from(r == k)),
+            Var::Lambda => 0.0,
+        });
+        if let Ok(sv) = b.singular_values() {
+            let smax = sv.iter().cloned().fold(0.0f64, f64::max);
+            let smin = sv.iter().cloned().fold(f64::INFINITY, f64::min);
+            if smin > 0.0 {
+                worst = worst.max(smax / smin);
+            } else {
+                worst = f64::INFINITY;
+            }
+        }
+    }
+    worst
+}
+
 /// The points a path check looks at: both ends of every segment and interior
 /// points at fraction `0.5` and `frac` of it; on an unbounded last segment,
 /// `from + 1` and `from + 10 (1 + |from|)`.
@@ -852,7 +893,14 @@ pub fn check_path<T: Scalar>(
     if path.info.degenerate_pivots > path.info.pivots {
         return Err("more degenerate pivots than pivots".into());
     }
-    // residuals
+    // residuals: the stated tolerance, or 10 eps times the condition number of
+    // the worst basis on the path if that is larger (the basic values solve a
+    // system with that matrix: its rounding errors are the precision's)
+    let cond = max_basis_condition(problem, path);
+    let tol = Tol {
+        residual: tol.residual.max(10.0 * T::eps().to_f64() * cond),
+        ..tol
+    };
     let mut points = Vec::new();
     for l in sample_lambdas(path, frac) {
         let pt = path
@@ -902,6 +950,24 @@ pub fn check_path<T: Scalar>(
             return Err(format!(
                 "the path reports residual {:?} (tol {:e})",
                 path.info.residual, tol.residual
+            ));
+        }
+        // and where the delivered path comes near the tolerance, the report is
+        // not a gross underestimate of its residual at the breakpoints (the ends
+        // of the segments) and the end
+        let mut at_breakpoints = residual(problem, &path.end).worst();
+        for s in &path.segments {
+            at_breakpoints = at_breakpoints.max(residual(problem, &s.eval(s.lambda_from)).worst());
+            if !s.unbounded {
+                at_breakpoints =
+                    at_breakpoints.max(residual(problem, &s.eval(s.lambda_to)).worst());
+            }
+        }
+        if at_breakpoints > 0.1 * tol.residual && path.info.residual.worst() < 0.01 * at_breakpoints
+        {
+            return Err(format!(
+                "the path reports residual {:?}, but at its breakpoints it is {at_breakpoints:e}",
+                path.info.residual
             ));
         }
     }
