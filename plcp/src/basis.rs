@@ -1,31 +1,141 @@
 //! The basis factorisation behind one small interface.
 //!
-//! The pivoting core asks only four things of a basis: solve `B y = a` for an
-//! entering column, read a row of `B^{-1}` (the lexicographic rule), replace one
-//! column (a pivot), and rebuild from scratch (a refactorisation, which also
-//! estimates the condition number). This file holds the dense explicit-inverse
-//! implementation: `O(m^2)` per pivot, an LU with partial pivoting (faer) at every
-//! refactorisation.
+//! A basis holds one variable per position; its columns are `-M[:, j]` for free
+//! and complementary `z` variables, `-d` for the parameter (the *matrix*
+//! columns), and unit vectors for slacks `w` and artificial variables (the
+//! *identity* columns). The pivoting core asks four things of it: solve
+//! `B y = a_v` for an entering column, solve `B y = e_k` (the lexicographic rule
+//! reads the basis inverse column by column), replace the variable at one
+//! position (a pivot), and rebuild from scratch (a refactorisation, which also
+//! estimates the condition number).
+//!
+//! Two representations:
+//!
+//! * [`DenseInverse`]: the explicit `(p+n) x (p+n)` inverse, updated in product
+//!   form; `O((p+n)^2)` per pivot whatever the basis. Simple, used as the
+//!   reference in tests.
+//! * [`BlockInverse`]: after permutation `B = [[S, 0], [C, I]]`, where the
+//!   identity columns cover their own rows and `S` is the small square block of
+//!   the matrix columns on the uncovered rows. Only `S^{-1}` (order `k`, the
+//!   number of basic matrix columns) is kept and updated by bordering and
+//!   Sherman-Morrison formulas; `B^{-1} a = (S^{-1} a_R, a_I - C S^{-1} a_R)` costs
+//!   `O(k^2 + (p+n) k)`. For a PLCP whose active set stays small this is far
+//!   cheaper than the dense inverse. This is the default.
 
+use crate::linalg::matvec;
+use crate::path::Var;
 use crate::scalar::Scalar;
-use faer::linalg::solvers::DenseSolveCore;
 use faer::{Col, Mat, MatRef};
+
+/// The column of variable `v` in the system `sum_v a_v v = q` (see [`crate::pivoting`]).
+pub(crate) fn var_column<T: Scalar>(m: MatRef<'_, T>, d: &Col<T>, p: usize, v: Var) -> Col<T> {
+    let dim = m.nrows();
+    let mut a = Col::zeros(dim);
+    match v {
+        Var::U(j) => {
+            for i in 0..dim {
+                a[i] = -m[(i, j)];
+            }
+        }
+        Var::Z(j) => {
+            for i in 0..dim {
+                a[i] = -m[(i, p + j)];
+            }
+        }
+        Var::W(i) => a[p + i] = T::one(),
+        Var::Artificial(k) => a[k] = T::one(),
+        Var::Lambda => {
+            for i in 0..dim {
+                a[i] = -d[i];
+            }
+        }
+    }
+    a
+}
+
+/// The row an identity-column variable covers, or `None` for a matrix column.
+fn identity_row(p: usize, v: Var) -> Option<usize> {
+    match v {
+        Var::W(i) => Some(p + i),
+        Var::Artificial(k) => Some(k),
+        _ => None,
+    }
+}
 
 /// What a basis representation offers the pivoting core.
 pub(crate) trait BasisFactor<T: Scalar> {
-    /// Rebuilds from the basis matrix; returns the 1-norm condition number
-    /// estimate, or `None` if the matrix is numerically singular.
-    fn refactor(&mut self, b: MatRef<'_, T>) -> Option<f64>;
-    /// `B^{-1} a`.
+    /// Rebuilds for `basis` (one variable per position); returns a 1-norm
+    /// condition number estimate, or `None` if the basis is numerically singular.
+    fn refactor(&mut self, m: MatRef<'_, T>, d: &Col<T>, p: usize, basis: &[Var]) -> Option<f64>;
+    /// `B^{-1} a`, indexed by basis position.
     fn solve(&self, a: &Col<T>) -> Col<T>;
-    /// `B^{-1} M[:, j]` for a column of a dense matrix.
-    fn solve_mat_col(&self, m: MatRef<'_, T>, j: usize) -> Col<T>;
+    /// `B^{-1} a_v`.
+    fn column(&self, m: MatRef<'_, T>, d: &Col<T>, p: usize, v: Var) -> Col<T> {
+        self.solve(&var_column(m, d, p, v))
+    }
     /// `B^{-1} e_k`.
-    fn solve_unit(&self, k: usize) -> Col<T>;
-    /// Entry `(i, k)` of `B^{-1}`.
-    fn inv_entry(&self, i: usize, k: usize) -> T;
-    /// Replaces the basic column at position `r`, given `y = B^{-1} a_new`.
-    fn replace(&mut self, r: usize, y: &Col<T>);
+    fn unit(&self, k: usize) -> Col<T>;
+    /// `B^{-T} c` for `c` indexed by basis position; the result is indexed by system row.
+    fn solve_transpose(&self, c: &Col<T>) -> Col<T>;
+    /// The variable at position `r` (now `leaving`) is replaced by `entering`,
+    /// with `y = B^{-1} a_entering` (so `y[r]` is the pivot).
+    #[allow(clippy::too_many_arguments)]
+    fn replace(
+        &mut self,
+        m: MatRef<'_, T>,
+        d: &Col<T>,
+        p: usize,
+        r: usize,
+        leaving: Var,
+        entering: Var,
+        y: &Col<T>,
+    ) -> bool;
+}
+
+fn norm1<T: Scalar>(a: MatRef<'_, T>) -> f64 {
+    let mut best = 0.0f64;
+    for j in 0..a.ncols() {
+        let mut s = 0.0f64;
+        for i in 0..a.nrows() {
+            s += a[(i, j)].to_f64().abs();
+        }
+        best = best.max(s);
+    }
+    best
+}
+
+/// Inverts a square matrix by LU with partial pivoting; `None` if numerically
+/// singular. Returns the inverse and the 1-norm condition number.
+fn invert<T: Scalar>(b: MatRef<'_, T>) -> Option<(Mat<T>, f64)> {
+    let dim = b.nrows();
+    let (inv, umax, umin) = crate::linalg::inverse(b)?;
+    if dim > 0 && umin <= umax * T::eps().to_f64() * dim as f64 {
+        return None;
+    }
+    let cond = norm1(b) * norm1(inv.as_ref());
+    if !cond.is_finite() {
+        return None;
+    }
+    Some((inv, cond))
+}
+
+/// Product-form update of an explicit inverse `inv` (top-left `k x k`) when
+/// column `r` of the matrix is replaced and `y = inv * a_new`.
+fn product_form_update<T: Scalar>(inv: &mut Mat<T>, k: usize, r: usize, y: &[T]) {
+    let piv = y[r];
+    for j in 0..k {
+        let f = inv[(r, j)] / piv;
+        if f != T::zero() {
+            let col = inv.col_mut(j);
+            let col = col.subrows_mut(0, k);
+            for (i, c) in col.iter_mut().enumerate() {
+                if i != r {
+                    *c = *c - y[i] * f;
+                }
+            }
+        }
+        inv[(r, j)] = f;
+    }
 }
 
 /// Dense explicit inverse with product-form (rank-one) updates.
@@ -41,74 +151,346 @@ impl<T: Scalar> DenseInverse<T> {
     }
 }
 
-fn norm1<T: Scalar>(a: MatRef<'_, T>) -> f64 {
-    let mut best = 0.0f64;
-    for j in 0..a.ncols() {
-        let mut s = 0.0f64;
-        for i in 0..a.nrows() {
-            s += a[(i, j)].to_f64().abs();
-        }
-        best = best.max(s);
-    }
-    best
-}
-
 impl<T: Scalar> BasisFactor<T> for DenseInverse<T> {
-    fn refactor(&mut self, b: MatRef<'_, T>) -> Option<f64> {
-        let dim = b.nrows();
-        if dim == 0 {
-            self.inv = Mat::zeros(0, 0);
-            return Some(1.0);
-        }
-        let lu = b.partial_piv_lu();
-        // a zero (or non-finite) pivot of U means a singular basis
-        let u = lu.U();
-        let umax = (0..dim).fold(0.0f64, |a, k| a.max(u[(k, k)].to_f64().abs()));
-        for k in 0..dim {
-            let v = u[(k, k)].to_f64().abs();
-            if !v.is_finite() || v == 0.0 || v <= umax * T::eps().to_f64() * dim as f64 {
-                return None;
+    fn refactor(&mut self, m: MatRef<'_, T>, d: &Col<T>, p: usize, basis: &[Var]) -> Option<f64> {
+        let dim = m.nrows();
+        let mut b = Mat::<T>::zeros(dim, dim);
+        for (r, v) in basis.iter().enumerate() {
+            let a = var_column(m, d, p, *v);
+            for i in 0..dim {
+                b[(i, r)] = a[i];
             }
         }
-        let inv = lu.inverse();
-        let cond = norm1(b) * norm1(inv.as_ref());
-        if !cond.is_finite() {
-            return None;
-        }
+        let (inv, cond) = invert(b.as_ref())?;
         self.inv = inv;
         Some(cond)
     }
 
     fn solve(&self, a: &Col<T>) -> Col<T> {
-        self.inv.as_ref() * a.as_ref()
+        matvec(self.inv.as_ref(), a.as_ref())
     }
 
-    fn solve_mat_col(&self, m: MatRef<'_, T>, j: usize) -> Col<T> {
-        self.inv.as_ref() * m.col(j)
+    fn column(&self, m: MatRef<'_, T>, d: &Col<T>, p: usize, v: Var) -> Col<T> {
+        match v {
+            Var::W(_) | Var::Artificial(_) => {
+                self.unit(identity_row(p, v).expect("identity column"))
+            }
+            Var::Z(j) => -matvec(self.inv.as_ref(), m.col(p + j)),
+            Var::U(j) => -matvec(self.inv.as_ref(), m.col(j)),
+            Var::Lambda => -matvec(self.inv.as_ref(), d.as_ref()),
+        }
     }
 
-    fn solve_unit(&self, k: usize) -> Col<T> {
+    fn unit(&self, k: usize) -> Col<T> {
         self.inv.col(k).to_owned()
     }
 
-    fn inv_entry(&self, i: usize, k: usize) -> T {
-        self.inv[(i, k)]
+    fn solve_transpose(&self, c: &Col<T>) -> Col<T> {
+        matvec(self.inv.as_ref().transpose(), c.as_ref())
     }
 
-    fn replace(&mut self, r: usize, y: &Col<T>) {
+    fn replace(
+        &mut self,
+        _m: MatRef<'_, T>,
+        _d: &Col<T>,
+        _p: usize,
+        r: usize,
+        _leaving: Var,
+        _entering: Var,
+        y: &Col<T>,
+    ) -> bool {
         let dim = self.inv.nrows();
-        let piv = y[r];
-        for j in 0..dim {
-            let f = self.inv[(r, j)] / piv;
-            if f != T::zero() {
-                for i in 0..dim {
-                    if i != r {
-                        let v = self.inv[(i, j)] - y[i] * f;
-                        self.inv[(i, j)] = v;
+        let ys: Vec<T> = (0..dim).map(|i| y[i]).collect();
+        product_form_update(&mut self.inv, dim, r, &ys);
+        true
+    }
+}
+
+/// Where a basis position lives in the block representation.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Slot {
+    /// A matrix column: block column `b`.
+    Matrix(usize),
+    /// An identity column covering system row `i`.
+    Identity(usize),
+}
+
+/// The block representation: `S^{-1}` for the matrix columns on the uncovered rows.
+pub(crate) struct BlockInverse<T: Scalar> {
+    dim: usize,
+    /// Order of the block.
+    k: usize,
+    /// `S^{-1}` in the top-left `k x k` (row = block column, column = block row).
+    sinv: Mat<T>,
+    /// The basic matrix columns, `dim x k` (capacity `dim`).
+    g: Mat<T>,
+    /// Block column -> basis position.
+    bpos: Vec<usize>,
+    /// Block row -> system row.
+    rows: Vec<usize>,
+    /// System row -> block row, if uncovered.
+    row_block: Vec<Option<usize>>,
+    /// Basis position -> slot.
+    slots: Vec<Slot>,
+}
+
+impl<T: Scalar> BlockInverse<T> {
+    pub(crate) fn new(dim: usize) -> Self {
+        Self {
+            dim,
+            k: 0,
+            sinv: Mat::zeros(dim, dim),
+            g: Mat::zeros(dim, dim),
+            bpos: Vec::new(),
+            rows: Vec::new(),
+            row_block: vec![None; dim],
+            slots: vec![Slot::Identity(0); dim],
+        }
+    }
+
+    /// `S^{-1} a_R` (block part) and `a - G S^{-1} a_R` (all system rows).
+    fn solve_parts(&self, a: &Col<T>) -> (Vec<T>, Col<T>) {
+        let k = self.k;
+        let ar = Col::from_fn(k, |j| a[self.rows[j]]);
+        let ym = matvec(self.sinv.as_ref().submatrix(0, 0, k, k), ar.as_ref());
+        let full = a - matvec(self.g.as_ref().subcols(0, k), ym.as_ref());
+        (ym.iter().copied().collect(), full)
+    }
+
+    /// Row `i` of `G` times `S^{-1}`: `g' = c' S^{-1}` with `c = G[i, 0..k]`.
+    fn row_times_sinv(&self, i: usize) -> Vec<T> {
+        let k = self.k;
+        let c = self.g.as_ref().row(i).subcols(0, k).transpose();
+        let g = matvec(self.sinv.as_ref().submatrix(0, 0, k, k).transpose(), c);
+        g.iter().copied().collect()
+    }
+}
+
+impl<T: Scalar> BasisFactor<T> for BlockInverse<T> {
+    fn refactor(&mut self, m: MatRef<'_, T>, d: &Col<T>, p: usize, basis: &[Var]) -> Option<f64> {
+        let dim = self.dim;
+        let mut covered = vec![false; dim];
+        self.bpos.clear();
+        self.rows.clear();
+        for (r, v) in basis.iter().enumerate() {
+            match identity_row(p, *v) {
+                Some(i) => {
+                    if covered[i] {
+                        return None;
                     }
+                    covered[i] = true;
+                    self.slots[r] = Slot::Identity(i);
+                }
+                None => {
+                    let b = self.bpos.len();
+                    let a = var_column(m, d, p, *v);
+                    for i in 0..dim {
+                        self.g[(i, b)] = a[i];
+                    }
+                    self.bpos.push(r);
+                    self.slots[r] = Slot::Matrix(b);
                 }
             }
-            self.inv[(r, j)] = f;
         }
+        for i in 0..dim {
+            self.row_block[i] = None;
+            if !covered[i] {
+                self.row_block[i] = Some(self.rows.len());
+                self.rows.push(i);
+            }
+        }
+        let k = self.bpos.len();
+        if k != self.rows.len() {
+            return None;
+        }
+        self.k = k;
+        let s = Mat::from_fn(k, k, |a, b| self.g[(self.rows[a], b)]);
+        let (inv, cond_s) = invert(s.as_ref())?;
+        for b in 0..k {
+            for a in 0..k {
+                self.sinv[(b, a)] = inv[(b, a)];
+            }
+        }
+        // cond(B) >= cond(S); with the coupling block C it is at most
+        // cond(S) (1 + |C|)^2: report the cheap bound's first factor times the coupling.
+        let cnorm = (0..k).fold(0.0f64, |acc, b| {
+            let mut s = 0.0;
+            for i in 0..dim {
+                if covered[i] {
+                    s += self.g[(i, b)].to_f64().abs();
+                }
+            }
+            acc.max(s)
+        });
+        Some(cond_s * (1.0 + cnorm))
+    }
+
+    fn solve(&self, a: &Col<T>) -> Col<T> {
+        let (ym, full) = self.solve_parts(a);
+        Col::from_fn(self.dim, |r| match self.slots[r] {
+            Slot::Matrix(b) => ym[b],
+            Slot::Identity(i) => full[i],
+        })
+    }
+
+    fn unit(&self, k: usize) -> Col<T> {
+        let mut e = Col::zeros(self.dim);
+        e[k] = T::one();
+        self.solve(&e)
+    }
+
+    fn solve_transpose(&self, c: &Col<T>) -> Col<T> {
+        // B' = [[S', C'], [0, I]]: pi_I = c_I, then S' pi_R = c_M - C' pi_I
+        let k = self.k;
+        let mut pi = Col::<T>::zeros(self.dim);
+        for (r, slot) in self.slots.iter().enumerate() {
+            if let Slot::Identity(i) = slot {
+                pi[*i] = c[r];
+            }
+        }
+        let t: Vec<T> = (0..k)
+            .map(|b| {
+                let mut v = c[self.bpos[b]];
+                for i in 0..self.dim {
+                    if self.row_block[i].is_none() {
+                        v = v - self.g[(i, b)] * pi[i];
+                    }
+                }
+                v
+            })
+            .collect();
+        for a in 0..k {
+            let mut v = T::zero();
+            for (b, tb) in t.iter().enumerate() {
+                v = v + self.sinv[(b, a)] * *tb;
+            }
+            pi[self.rows[a]] = v;
+        }
+        pi
+    }
+
+    fn replace(
+        &mut self,
+        m: MatRef<'_, T>,
+        d: &Col<T>,
+        p: usize,
+        r: usize,
+        leaving: Var,
+        entering: Var,
+        y: &Col<T>,
+    ) -> bool {
+        let k = self.k;
+        let ym: Vec<T> = (0..k).map(|b| y[self.bpos[b]]).collect();
+        match (self.slots[r], identity_row(p, entering)) {
+            (Slot::Matrix(b), None) => {
+                // column replacement in S: product form on the block
+                product_form_update(&mut self.sinv, k, b, &ym);
+                let a = var_column(m, d, p, entering);
+                for i in 0..self.dim {
+                    self.g[(i, b)] = a[i];
+                }
+            }
+            (Slot::Identity(i_out), Some(i_in)) if i_out == i_in => {
+                // the same unit column under another name (a slack for an artificial)
+            }
+            (Slot::Identity(i_out), Some(i_in)) => {
+                // row i_in becomes covered, row i_out uncovered: replace block row a
+                let Some(a) = self.row_block[i_in] else {
+                    return false;
+                };
+                let g = self.row_times_sinv(i_out);
+                let ga = g[a];
+                let u: Vec<T> = (0..k).map(|b| self.sinv[(b, a)]).collect();
+                for col in 0..k {
+                    let f = if col == a { g[col] - T::one() } else { g[col] } / ga;
+                    if f != T::zero() {
+                        for (b, ub) in u.iter().enumerate() {
+                            let v = self.sinv[(b, col)] - *ub * f;
+                            self.sinv[(b, col)] = v;
+                        }
+                    }
+                }
+                self.rows[a] = i_out;
+                self.row_block[i_out] = Some(a);
+                self.row_block[i_in] = None;
+                self.slots[r] = Slot::Identity(i_in);
+            }
+            (Slot::Identity(i), None) => {
+                // grow: new block row i, new block column for `entering`
+                let sigma = y[r];
+                let g = self.row_times_sinv(i);
+                for col in 0..k {
+                    let f = g[col] / sigma;
+                    if f != T::zero() {
+                        for (b, yb) in ym.iter().enumerate() {
+                            let v = self.sinv[(b, col)] + *yb * f;
+                            self.sinv[(b, col)] = v;
+                        }
+                    }
+                }
+                for (b, yb) in ym.iter().enumerate() {
+                    self.sinv[(b, k)] = -*yb / sigma;
+                }
+                for (col, gc) in g.iter().enumerate() {
+                    self.sinv[(k, col)] = -*gc / sigma;
+                }
+                self.sinv[(k, k)] = T::one() / sigma;
+                let a = var_column(m, d, p, entering);
+                for ii in 0..self.dim {
+                    self.g[(ii, k)] = a[ii];
+                }
+                self.bpos.push(r);
+                self.rows.push(i);
+                self.row_block[i] = Some(k);
+                self.slots[r] = Slot::Matrix(k);
+                self.k = k + 1;
+            }
+            (Slot::Matrix(b), Some(i_in)) => {
+                // shrink: remove block column b and block row a
+                let Some(a) = self.row_block[i_in] else {
+                    return false;
+                };
+                let piv = self.sinv[(b, a)];
+                let rowb: Vec<T> = (0..k).map(|c| self.sinv[(b, c)] / piv).collect();
+                for col in 0..k {
+                    if col == a || rowb[col] == T::zero() {
+                        continue;
+                    }
+                    for bb in 0..k {
+                        if bb != b {
+                            let v = self.sinv[(bb, col)] - self.sinv[(bb, a)] * rowb[col];
+                            self.sinv[(bb, col)] = v;
+                        }
+                    }
+                }
+                let last = k - 1;
+                // move block column `last` into `b` (row of sinv, column of g)
+                if b != last {
+                    for c in 0..k {
+                        self.sinv[(b, c)] = self.sinv[(last, c)];
+                    }
+                    for ii in 0..self.dim {
+                        self.g[(ii, b)] = self.g[(ii, last)];
+                    }
+                    self.bpos[b] = self.bpos[last];
+                    self.slots[self.bpos[b]] = Slot::Matrix(b);
+                }
+                self.bpos.pop();
+                // move block row `last` into `a` (column of sinv)
+                if a != last {
+                    for bb in 0..k {
+                        self.sinv[(bb, a)] = self.sinv[(bb, last)];
+                    }
+                    self.rows[a] = self.rows[last];
+                    self.row_block[self.rows[a]] = Some(a);
+                }
+                self.rows.pop();
+                self.row_block[i_in] = None;
+                self.slots[r] = Slot::Identity(i_in);
+                self.k = last;
+            }
+        }
+        let _ = leaving;
+        true
     }
 }

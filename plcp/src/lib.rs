@@ -53,10 +53,11 @@
 //! ```
 #![warn(missing_docs)]
 
-mod basis;
+pub mod basis;
 pub mod error;
 pub mod io;
 pub mod lemke;
+pub mod linalg;
 pub mod path;
 mod pivoting;
 pub mod problem;
@@ -73,7 +74,7 @@ pub use lemke::{solve_lcp, LcpSolution};
 pub use path::{Breakpoint, FreeBlockInfo, Info, Path, Point, Ray, Residual, Segment, Status, Var};
 pub use problem::{Lcp, Plcp};
 pub use scalar::{Precision, Scalar};
-pub use settings::{Method, Settings};
+pub use settings::{BasisKind, Method, Settings};
 
 /// Traces the solution path of `problem` with the method chosen in `settings`.
 ///

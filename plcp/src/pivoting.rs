@@ -14,12 +14,12 @@
 //! variables (dependent equality rows, Wolfe long form) are fixed at zero: they
 //! block any step that would move them and, once out, never return.
 
-use crate::basis::{BasisFactor, DenseInverse};
+use crate::basis::{var_column, BasisFactor, BlockInverse, DenseInverse};
 use crate::path::{Breakpoint, Point, Residual, Segment, Var};
 use crate::residual::residual_parts;
 use crate::scalar::Scalar;
 use crate::settings::Settings;
-use faer::{Col, Mat, MatRef};
+use faer::{Col, MatRef};
 
 /// How a trace ended.
 pub(crate) enum TraceEnd<T: Scalar> {
@@ -68,7 +68,7 @@ pub(crate) struct Engine<'a, T: Scalar> {
     pub d: Col<T>,
     pub basis: Vec<Var>,
     pos: Vec<Option<usize>>,
-    factor: DenseInverse<T>,
+    factor: Box<dyn BasisFactor<T>>,
     pub x: Col<T>,
     /// Current value of `L` (kept in step with `x` when `L` is basic).
     pub lambda: T,
@@ -95,7 +95,7 @@ impl<'a, T: Scalar> Engine<'a, T> {
             Var::Z(i) => n + i,
             Var::U(j) => 2 * n + j,
             Var::Artificial(k) => 2 * n + p + k,
-            Var::Lambda => 2 * n + 2 * p,
+            Var::Lambda => 3 * n + 2 * p,
         }
     }
 
@@ -119,8 +119,11 @@ impl<'a, T: Scalar> Engine<'a, T> {
             q,
             d,
             basis: basis.clone(),
-            pos: vec![None; 2 * n + 2 * p + 1],
-            factor: DenseInverse::new(dim),
+            pos: vec![None; 3 * n + 2 * p + 1],
+            factor: match settings.basis {
+                crate::settings::BasisKind::Block => Box::new(BlockInverse::new(dim)),
+                crate::settings::BasisKind::Dense => Box::new(DenseInverse::new(dim)),
+            },
             x: Col::zeros(dim),
             lambda,
             settings,
@@ -146,69 +149,23 @@ impl<'a, T: Scalar> Engine<'a, T> {
         self.pos[self.var_index(v)]
     }
 
-    fn column_of(&self, v: Var) -> Col<T> {
-        let mut a = Col::zeros(self.dim);
-        match v {
-            Var::U(j) => {
-                for i in 0..self.dim {
-                    a[i] = -self.m[(i, j)];
-                }
-            }
-            Var::Z(i) => {
-                for r in 0..self.dim {
-                    a[r] = -self.m[(r, self.p + i)];
-                }
-            }
-            Var::W(i) => a[self.p + i] = T::one(),
-            Var::Artificial(k) => a[k] = T::one(),
-            Var::Lambda => {
-                for r in 0..self.dim {
-                    a[r] = -self.d[r];
-                }
-            }
-        }
-        a
-    }
-
     /// `B^{-1} a_v`: the change of the basic values per unit increase of `v` is its negative.
     pub(crate) fn column(&self, v: Var) -> Col<T> {
-        match v {
-            Var::W(i) => self.factor.solve_unit(self.p + i),
-            Var::Artificial(k) => self.factor.solve_unit(k),
-            Var::Z(i) => {
-                let mut y = self.factor.solve_mat_col(self.m, self.p + i);
-                for r in 0..self.dim {
-                    y[r] = -y[r];
-                }
-                y
-            }
-            Var::U(j) => {
-                let mut y = self.factor.solve_mat_col(self.m, j);
-                for r in 0..self.dim {
-                    y[r] = -y[r];
-                }
-                y
-            }
-            Var::Lambda => self.factor.solve(&self.column_of(Var::Lambda)),
-        }
+        self.factor.column(self.m, &self.d, self.p, v)
     }
 
     /// Rebuilds the factorisation and the basic values (drift correction).
     pub(crate) fn refactor(&mut self) -> Result<(), String> {
-        let mut b = Mat::<T>::zeros(self.dim, self.dim);
-        for (r, v) in self.basis.iter().enumerate() {
-            let a = self.column_of(*v);
-            for i in 0..self.dim {
-                b[(i, r)] = a[i];
-            }
-        }
-        let cond = self.factor.refactor(b.as_ref()).ok_or_else(|| {
-            format!(
-                "the basis became numerically singular at L = {:e} after {} pivots",
-                self.lambda.to_f64(),
-                self.pivots
-            )
-        })?;
+        let cond = self
+            .factor
+            .refactor(self.m, &self.d, self.p, &self.basis)
+            .ok_or_else(|| {
+                format!(
+                    "the basis became numerically singular at L = {:e} after {} pivots",
+                    self.lambda.to_f64(),
+                    self.pivots
+                )
+            })?;
         self.refactorisations += 1;
         self.since_refactor = 0;
         self.max_cond = self.max_cond.max(cond);
@@ -227,7 +184,8 @@ impl<'a, T: Scalar> Engine<'a, T> {
             self.x[r] = v;
         }
         if let Some(l) = self.row_of(Var::Lambda) {
-            self.lambda = self.x[l];
+            // L stays the path's exact parameter; the recomputed value measures drift
+            self.x[l] = self.lambda;
         }
         if cond * T::eps().to_f64() > self.settings.max_cond_eps {
             return Err(format!(
@@ -389,10 +347,8 @@ impl<'a, T: Scalar> Engine<'a, T> {
                 if tied.len() == 1 {
                     break;
                 }
-                let vals: Vec<T> = tied
-                    .iter()
-                    .map(|&r| self.factor.inv_entry(r, k) / col[r])
-                    .collect();
+                let inv_k = self.factor.unit(k);
+                let vals: Vec<T> = tied.iter().map(|&r| inv_k[r] / col[r]).collect();
                 let vmin = vals.iter().fold(vals[0], |a, &b| a.min(b));
                 let vscale = vals.iter().fold(T::zero(), |a, &b| a.max(b.abs()));
                 let tol = self.tie_tol * vscale;
@@ -423,7 +379,14 @@ impl<'a, T: Scalar> Engine<'a, T> {
         let ei = self.var_index(entering);
         self.pos[ei] = Some(r);
         self.basis[r] = entering;
-        self.factor.replace(r, col);
+        let updated = self
+            .factor
+            .replace(self.m, &self.d, self.p, r, leaving, entering, col);
+        if !updated {
+            // the update does not apply (e.g. a row covered twice): rebuild, which
+            // reports a singular basis if that is what it is
+            self.refactor()?;
+        }
         self.x[r] = value;
         self.pivots += 1;
         self.since_refactor += 1;
@@ -490,6 +453,15 @@ impl<'a, T: Scalar> Engine<'a, T> {
             let rising = rate > rate_tol;
             let moving = rate.abs() > rate_tol;
             let block = self.ratio_test(&col);
+            if let Some((r, _)) = block {
+                if matches!(self.basis[r], Var::Artificial(_)) {
+                    match self.admit_for_artificial(r, driver, &col) {
+                        Ok(true) => continue,
+                        Ok(false) => {}
+                        Err(msg) => return TraceEnd::IllConditioned(msg),
+                    }
+                }
+            }
             if let (true, Some(end)) = (rising, lambda_end) {
                 let theta_end = (end - self.lambda) / rate;
                 if block.as_ref().is_none_or(|(_, tb)| theta_end <= *tb) {
@@ -532,37 +504,46 @@ impl<'a, T: Scalar> Engine<'a, T> {
                 }
                 return TraceEnd::SecondaryRay { driver, col, rate };
             };
-            // the step
+            // the step; L is the path's independent variable, kept exactly as the
+            // segments record it (a drift of the basic L would open gaps)
+            // a change of L at the rounding level is no change (ties within the
+            // tie tolerance are ties): it would fake turning points
+            let dl = theta * rate;
+            let moving = moving && dl.abs() > self.tie_tol * self.lambda.abs().max(T::one());
+            let lambda_to = if moving {
+                self.lambda + dl
+            } else {
+                self.lambda
+            };
             if let Some(rec) = rec.as_deref_mut() {
                 if moving && theta > T::zero() {
                     let sign = if rate > T::zero() { 1 } else { -1 };
                     self.note_direction(rec, sign);
-                    let lambda_to = self.lambda + theta * rate;
                     self.record_segment(rec, driver, &col, rate, lambda_to, false, T::zero());
                 }
             }
-            let lambda_before = self.lambda;
             for i in 0..self.dim {
                 let v = self.x[i] - theta * col[i];
                 self.x[i] = v;
             }
-            if driver == Var::Lambda {
-                self.lambda = self.lambda + theta;
-            } else if let Some(l) = self.row_of(Var::Lambda) {
-                self.lambda = self.x[l];
+            self.lambda = lambda_to;
+            if let Some(l) = self.row_of(Var::Lambda) {
+                self.x[l] = lambda_to;
             }
             let degenerate = theta == T::zero() || !moving;
             if theta == T::zero() {
                 self.degenerate_pivots += 1;
             }
             let leaving = self.basis[r];
-            if let Err(msg) = self.pivot(r, driver, &col, theta) {
+            // the entering variable's value: the step length, or for L its level
+            let value = if driver == Var::Lambda {
+                self.lambda
+            } else {
+                theta
+            };
+            if let Err(msg) = self.pivot(r, driver, &col, value) {
                 return TraceEnd::IllConditioned(msg);
             }
-            if let Some(l) = self.row_of(Var::Lambda) {
-                self.lambda = self.x[l];
-            }
-            let _ = lambda_before;
             match leaving {
                 Var::W(_) | Var::Z(_) => {
                     let next = leaving.complement().expect("complementary");
@@ -595,6 +576,194 @@ impl<'a, T: Scalar> Engine<'a, T> {
                 }
             }
         }
+    }
+
+    /// Whether `v` may enter the basis under restricted entry (its complement nonbasic),
+    /// given the current driver.
+    fn admissible(&self, v: Var, driver: Var) -> bool {
+        if v == driver || self.row_of(v).is_some() {
+            return false;
+        }
+        match v.complement() {
+            Some(c) => c != driver && self.row_of(c).is_none(),
+            None => matches!(v, Var::U(_)),
+        }
+    }
+
+    /// An artificial variable (fixed at zero) at row `r` blocks the driver. If an
+    /// admissible variable can take its place at zero (a section already at yield
+    /// that may flow, a free variable), pivot it in and let the driver go on.
+    /// Prefers a variable that rises with the driver. Returns whether one was found.
+    fn admit_for_artificial(
+        &mut self,
+        r: usize,
+        driver: Var,
+        col: &Col<T>,
+    ) -> Result<bool, String> {
+        let mut e = Col::<T>::zeros(self.dim);
+        e[r] = T::one();
+        let rho = self.factor.solve_transpose(&e);
+        let mut best: Option<(Var, T, bool)> = None;
+        let mut consider = |v: Var, this: &Self| {
+            if !this.admissible(v, driver) {
+                return;
+            }
+            let a = var_column(this.m, &this.d, this.p, v);
+            let mut dot = T::zero();
+            let mut anorm = T::zero();
+            for i in 0..this.dim {
+                dot = dot + rho[i] * a[i];
+                anorm = anorm.max(a[i].abs());
+            }
+            if dot.abs() <= this.pivot_tol * anorm.max(T::one()) {
+                return;
+            }
+            // rises with the driver when the signs differ (or when free)
+            let rises = matches!(v, Var::U(_)) || (dot > T::zero()) != (col[r] > T::zero());
+            let score = dot.abs() / anorm.max(T::eps());
+            let better = match &best {
+                None => true,
+                Some((_, s, br)) => (rises && !*br) || (rises == *br && score > *s),
+            };
+            if better {
+                best = Some((v, score, rises));
+            }
+        };
+        for i in 0..self.n {
+            consider(Var::W(i), self);
+            consider(Var::Z(i), self);
+        }
+        for j in 0..self.p {
+            consider(Var::U(j), self);
+        }
+        let Some((v, _, _)) = best else {
+            // a free variable may unlock a section by taking a slack's row at zero
+            if self.place_free_in_degenerate_rows()? > 0 {
+                return Ok(true);
+            }
+            return self.free_vertical_move(&rho, driver);
+        };
+        let y = self.column(v);
+        if y[r].abs() <= self.pivot_tol * (0..self.dim).fold(T::one(), |a, i| a.max(y[i].abs())) {
+            return Ok(false);
+        }
+        self.degenerate_pivots += 1;
+        self.pivot(r, v, &y, T::zero())?;
+        Ok(true)
+    }
+
+    /// When an artificial row (with left vector `rho`) can only be served by a
+    /// complementary variable whose complement is basic, move a nonbasic free
+    /// variable (the problem's solutions are not unique along it) at fixed `L`
+    /// until that complement, or another sign-constrained variable, reaches zero,
+    /// and pivot the free variable in. A zero-length step in `L`; finite, since
+    /// each such move makes one more free variable basic.
+    fn free_vertical_move(&mut self, rho: &Col<T>, driver: Var) -> Result<bool, String> {
+        for i in 0..self.n {
+            for e in [Var::Z(i), Var::W(i)] {
+                if e == driver || self.row_of(e).is_some() {
+                    continue;
+                }
+                let c = e.complement().expect("complementary");
+                let Some(rc) = self.row_of(c) else {
+                    continue;
+                };
+                let a = var_column(self.m, &self.d, self.p, e);
+                let mut dot = T::zero();
+                let mut anorm = T::one();
+                for k in 0..self.dim {
+                    dot = dot + rho[k] * a[k];
+                    anorm = anorm.max(a[k].abs());
+                }
+                if dot.abs() <= self.pivot_tol * anorm {
+                    continue;
+                }
+                for j in 0..self.p {
+                    if self.row_of(Var::U(j)).is_some() {
+                        continue;
+                    }
+                    let ytrue = self.column(Var::U(j));
+                    let ymax = (0..self.dim).fold(T::zero(), |acc, k| acc.max(ytrue[k].abs()));
+                    let ptol = self.pivot_tol * ymax;
+                    if ytrue[rc].abs() <= ptol {
+                        continue;
+                    }
+                    // a vertical move keeps L where it is
+                    if let Some(l) = self.row_of(Var::Lambda) {
+                        if ytrue[l].abs() > ptol {
+                            continue;
+                        }
+                    }
+                    let dir = if ytrue[rc] > T::zero() {
+                        T::one()
+                    } else {
+                        -T::one()
+                    };
+                    let y = Col::from_fn(self.dim, |k| dir * ytrue[k]);
+                    // ratio test over sign-constrained variables; artificials must not move
+                    let mut best: Option<(usize, T)> = None;
+                    let mut art_moves = false;
+                    for r in 0..self.dim {
+                        match self.basis[r] {
+                            Var::Artificial(_) if y[r].abs() > ptol => art_moves = true,
+                            Var::W(_) | Var::Z(_) if y[r] > ptol => {
+                                let t = self.x[r].max(T::zero()) / y[r];
+                                if best.is_none_or(|(br, bt)| {
+                                    t < bt || (t == bt && r == rc && br != rc)
+                                }) {
+                                    best = Some((r, t));
+                                }
+                            }
+                            _ => {}
+                        }
+                    }
+                    if art_moves {
+                        continue;
+                    }
+                    let Some((rb, theta)) = best else {
+                        continue;
+                    };
+                    for k in 0..self.dim {
+                        let v = self.x[k] - theta * y[k];
+                        self.x[k] = v;
+                    }
+                    self.degenerate_pivots += 1;
+                    self.pivot(rb, Var::U(j), &ytrue, dir * theta)?;
+                    return Ok(true);
+                }
+            }
+        }
+        Ok(false)
+    }
+
+    /// Brings nonbasic free variables into the basis in place of slacks `w_i` that
+    /// sit at zero (a swap that leaves the point unchanged). Returns how many.
+    pub(crate) fn place_free_in_degenerate_rows(&mut self) -> Result<usize, String> {
+        let mut placed = 0;
+        let scale = self.xscale();
+        for j in 0..self.p {
+            if self.row_of(Var::U(j)).is_some() {
+                continue;
+            }
+            let y = self.column(Var::U(j));
+            let ymax = (0..self.dim).fold(T::zero(), |a, i| a.max(y[i].abs()));
+            let mut best: Option<usize> = None;
+            for r in 0..self.dim {
+                if matches!(self.basis[r], Var::W(_))
+                    && self.x[r].abs() <= self.tie_tol * scale
+                    && y[r].abs() > self.pivot_tol * ymax
+                    && best.is_none_or(|b| y[r].abs() > y[b].abs())
+                {
+                    best = Some(r);
+                }
+            }
+            if let Some(r) = best {
+                self.x[r] = T::zero();
+                self.pivot(r, Var::U(j), &y, T::zero())?;
+                placed += 1;
+            }
+        }
+        Ok(placed)
     }
 
     pub(crate) fn tie_tol_value(&self) -> T {
@@ -661,22 +830,25 @@ pub(crate) fn start_phase<T: Scalar>(
     let dim = p + n;
     let c = |i: usize| covering.map_or(T::one(), |c| c[i]);
     // equality rows left to artificial variables must hold already
-    let mut scale = T::one();
+    // relative to the data alone (no floor at one: q may be tiny)
+    let mut scale = T::zero();
     for r in 0..dim {
         scale = scale.max(q[r].abs()).max((lambda0 * d[r]).abs());
     }
+    if scale == T::zero() {
+        scale = T::one();
+    }
     let tol = eng.tie_tol_value() * scale * T::from_f64(dim.max(1) as f64);
+    // equality rows left to artificial variables (fixed at zero) that do not hold
+    // at the start: their residual h is removed from the right-hand side at s = 0
+    // and brought back as s rises, so the path must find variables that satisfy them
+    let mut h = Col::<T>::zeros(dim);
+    let mut repair = false;
     for r in 0..dim {
         if let Var::Artificial(k) = eng.basis[r] {
             if eng.x[r].abs() > tol {
-                return Err(StartFailure {
-                    status: Status::Infeasible,
-                    message: format!(
-                        "the equality rows are inconsistent at L = {:e}: row {k} depends on the others but its right-hand side is off by {:e}",
-                        lambda0.to_f64(),
-                        eng.x[r].to_f64()
-                    ),
-                });
+                h[k] = -eng.x[r];
+                repair = true;
             }
         }
     }
@@ -689,17 +861,21 @@ pub(crate) fn start_phase<T: Scalar>(
             }
         }
     }
-    if a == T::zero() {
+    if a == T::zero() && !repair {
         return Ok(());
+    }
+    if a == T::zero() {
+        a = T::one();
     }
     let mut qa = Col::zeros(dim);
     let mut da = Col::zeros(dim);
     for r in 0..dim {
-        qa[r] = q[r] + lambda0 * d[r];
+        qa[r] = q[r] + lambda0 * d[r] + h[r];
+        da[r] = -h[r] / a;
     }
     for i in 0..n {
         qa[p + i] = qa[p + i] + a * c(i);
-        da[p + i] = -c(i);
+        da[p + i] = da[p + i] - c(i);
     }
     let ill = |m: String| StartFailure {
         status: Status::IllConditioned,
@@ -789,7 +965,19 @@ pub(crate) fn run_path<T: Scalar>(
         info.refactorisations = eng.refactorisations;
         info.max_condition = eng.max_cond;
     };
-    if let Err(f) = start_phase(&mut eng, q, d, lambda0, settings.covering.as_ref()) {
+    let started = if method == "wolfe" {
+        eng.place_free_in_degenerate_rows()
+            .map(|_| ())
+            .map_err(|message| StartFailure {
+                status: Status::IllConditioned,
+                message,
+            })
+    } else {
+        Ok(())
+    };
+    if let Err(f) =
+        started.and_then(|_| start_phase(&mut eng, q, d, lambda0, settings.covering.as_ref()))
+    {
         fill(&mut info, &eng);
         info.start_pivots = eng.pivots;
         info.solve_seconds = timer.elapsed().as_secs_f64();

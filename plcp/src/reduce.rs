@@ -11,7 +11,6 @@ use crate::error::PlcpError;
 use crate::problem::Plcp;
 use crate::scalar::Scalar;
 use crate::tolerance::rank_tol;
-use faer::linalg::solvers::Solve;
 use faer::{Col, Mat};
 
 /// The reduced problem and what it takes to recover `u`.
@@ -58,13 +57,35 @@ impl<T: Scalar> Reduction<T> {
             rhs[(i, n)] = problem.q()[i];
             rhs[(i, n + 1)] = problem.d()[i];
         }
-        let lu = f.partial_piv_lu();
-        let g = lu.solve(rhs.as_ref());
+        let g = crate::linalg::solve(f, rhs.as_ref())
+            .ok_or(PlcpError::SingularFreeBlock { p, rank })?;
         let mzu = m.submatrix(p, 0, n, p);
-        let prod = mzu * g.as_ref();
-        let mr = Mat::from_fn(n, n, |i, j| m[(p + i, p + j)] - prod[(i, j)]);
-        let qr = Col::from_fn(n, |i| problem.q()[p + i] - prod[(i, n)]);
-        let dr = Col::from_fn(n, |i| problem.d()[p + i] - prod[(i, n + 1)]);
+        let prod = crate::linalg::matmul(mzu, g.as_ref());
+        // Entries that cancel to the rounding level of the terms that formed them
+        // are zero: pivoting on such noise would follow a path that does not exist.
+        let absmzu = Mat::from_fn(n, p, |i, j| mzu[(i, j)].abs());
+        let absg = Mat::from_fn(p, n + 2, |i, j| g[(i, j)].abs());
+        let size = crate::linalg::matmul(absmzu.as_ref(), absg.as_ref());
+        let noise = T::from_f64(64.0 * (p + 1) as f64) * T::eps();
+        let clean = |v: T, a: T, s: T| {
+            if v.abs() <= noise * (a.abs() + s) {
+                T::zero()
+            } else {
+                v
+            }
+        };
+        let mr = Mat::from_fn(n, n, |i, j| {
+            let a = m[(p + i, p + j)];
+            clean(a - prod[(i, j)], a, size[(i, j)])
+        });
+        let qr = Col::from_fn(n, |i| {
+            let a = problem.q()[p + i];
+            clean(a - prod[(i, n)], a, size[(i, n)])
+        });
+        let dr = Col::from_fn(n, |i| {
+            let a = problem.d()[p + i];
+            clean(a - prod[(i, n + 1)], a, size[(i, n + 1)])
+        });
         for v in mr
             .col_iter()
             .flat_map(|c| c.iter().copied())

@@ -11,6 +11,9 @@ pub trait Scalar: RealField + Copy + Send + Sync + core::ops::Neg<Output = Self>
     /// A short name: `"f32"`, `"f64"`, `"f128"`.
     const NAME: &'static str;
 
+    /// True for hardware types (`f32`, `f64`), on which faer's SIMD kernels run.
+    const NATIVE: bool;
+
     /// Converts to `f64` (rounding for `fx128`).
     fn to_f64(self) -> f64;
 
@@ -73,6 +76,7 @@ pub trait Scalar: RealField + Copy + Send + Sync + core::ops::Neg<Output = Self>
 
 impl Scalar for f32 {
     const NAME: &'static str = "f32";
+    const NATIVE: bool = true;
     #[inline]
     fn to_f64(self) -> f64 {
         self as f64
@@ -85,6 +89,7 @@ impl Scalar for f32 {
 
 impl Scalar for f64 {
     const NAME: &'static str = "f64";
+    const NATIVE: bool = true;
     #[inline]
     fn to_f64(self) -> f64 {
         self
@@ -97,6 +102,7 @@ impl Scalar for f64 {
 
 impl Scalar for faer::fx128 {
     const NAME: &'static str = "f128";
+    const NATIVE: bool = false;
     #[inline]
     fn to_f64(self) -> f64 {
         self.0 + self.1

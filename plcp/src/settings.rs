@@ -42,7 +42,7 @@ pub struct Settings<T: Scalar> {
     pub max_pivots: Option<usize>,
     /// Pivot tolerance, as a multiple of the working precision's epsilon: an entry
     /// of the entering column counts only if `|a| > pivot_tol_eps * eps * scale`.
-    /// Default `1e4` (f64: about 2e-12 relative).
+    /// Default `128` (f64: about 3e-14 relative, f32: about 2e-5).
     pub pivot_tol_eps: f64,
     /// Ratios within `tie_tol_eps * eps` (relative) count as ties and go to the
     /// lexicographic rule. Default `1e3`.
@@ -55,6 +55,19 @@ pub struct Settings<T: Scalar> {
     /// Equilibrate `M` (rows and columns, by powers of two) before pivoting and
     /// unscale the answer. Default `true`. See [`crate::scaling`].
     pub scaling: bool,
+    /// How the basis is represented. Default [`BasisKind::Block`].
+    pub basis: BasisKind,
+}
+
+/// The representation of the basis inverse (see [`crate::basis`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum BasisKind {
+    /// Only the inverse of the block of matrix columns on uncovered rows:
+    /// `O(k^2 + (p+n) k)` per pivot for `k` basic matrix columns.
+    #[default]
+    Block,
+    /// The explicit dense inverse: `O((p+n)^2)` per pivot.
+    Dense,
 }
 
 impl<T: Scalar> Default for Settings<T> {
@@ -63,11 +76,12 @@ impl<T: Scalar> Default for Settings<T> {
             method: Method::Lemke,
             covering: None,
             max_pivots: None,
-            pivot_tol_eps: 1e4,
+            pivot_tol_eps: 128.0,
             tie_tol_eps: 1e3,
             refactor_period: 50,
             max_cond_eps: 1e-2,
             scaling: true,
+            basis: BasisKind::Block,
         }
     }
 }

@@ -6,7 +6,7 @@
 //!
 //! | name | where | value |
 //! |---|---|---|
-//! | pivot tolerance | an entry `a_i` of the entering column may be a pivot | `abs(a_i) > pivot_tol_eps * eps * max_k abs(a_k)` (default `pivot_tol_eps = 1e4`) |
+//! | pivot tolerance | an entry `a_i` of the entering column may be a pivot | `abs(a_i) > pivot_tol_eps * eps * max_k abs(a_k)` (default `pivot_tol_eps = 128`) |
 //! | tie tolerance | two ratios `t_i`, `t_j` of the minimum-ratio test are tied (and go to the lexicographic rule) | `abs(t_i - t_j) <= tie_tol_eps * eps * max(1, abs(t_min), scale)` (default `tie_tol_eps = 1e3`) |
 //! | lexicographic tie | two scaled rows of the basis inverse are equal in an entry | same tie tolerance, relative to the largest entry compared |
 //! | zero step | a step is degenerate (zero length) | ratio `<= tie tolerance` |

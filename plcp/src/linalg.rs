@@ -1,0 +1,161 @@
+//! Dense kernels: faer for `f32`/`f64`; for `fx128`, where faer 0.24's matrix
+//! multiply micro-kernel panics on non-native types outside its own tests (so its
+//! LU `inverse()` and `solve()` do too), the same operations written plainly.
+
+use crate::scalar::Scalar;
+use faer::linalg::solvers::{DenseSolveCore, Solve};
+use faer::{Col, Mat, MatRef};
+
+/// `A^{-1}` by LU with partial pivoting, with the largest and smallest pivot
+/// magnitudes of `U`; `None` if a pivot is zero or non-finite.
+pub fn inverse<T: Scalar>(a: MatRef<'_, T>) -> Option<(Mat<T>, f64, f64)> {
+    let n = a.nrows();
+    if n == 0 {
+        return Some((Mat::zeros(0, 0), 1.0, 1.0));
+    }
+    if T::NATIVE {
+        let lu = a.partial_piv_lu();
+        let u = lu.U();
+        let (umax, umin) = (0..n).fold((0.0f64, f64::INFINITY), |(mx, mn), k| {
+            let v = u[(k, k)].to_f64().abs();
+            (mx.max(v), mn.min(v))
+        });
+        if !(umin > 0.0 && umax.is_finite()) {
+            return None;
+        }
+        return Some((lu.inverse(), umax, umin));
+    }
+    // Gauss-Jordan with partial pivoting on [A | I]
+    let mut w = a.to_owned();
+    let mut inv = Mat::<T>::identity(n, n);
+    let (mut umax, mut umin) = (0.0f64, f64::INFINITY);
+    for k in 0..n {
+        let mut piv = k;
+        for i in k + 1..n {
+            if w[(i, k)].abs() > w[(piv, k)].abs() {
+                piv = i;
+            }
+        }
+        let pv = w[(piv, k)];
+        let pa = pv.to_f64().abs();
+        if pa == 0.0 || !pa.is_finite() {
+            return None;
+        }
+        umax = umax.max(pa);
+        umin = umin.min(pa);
+        if piv != k {
+            for j in 0..n {
+                let t = w[(k, j)];
+                w[(k, j)] = w[(piv, j)];
+                w[(piv, j)] = t;
+                let t = inv[(k, j)];
+                inv[(k, j)] = inv[(piv, j)];
+                inv[(piv, j)] = t;
+            }
+        }
+        let rp = T::one() / pv;
+        for j in 0..n {
+            w[(k, j)] = w[(k, j)] * rp;
+            inv[(k, j)] = inv[(k, j)] * rp;
+        }
+        for i in 0..n {
+            if i != k {
+                let f = w[(i, k)];
+                if f != T::zero() {
+                    for j in 0..n {
+                        let v = w[(i, j)] - f * w[(k, j)];
+                        w[(i, j)] = v;
+                        let v = inv[(i, j)] - f * inv[(k, j)];
+                        inv[(i, j)] = v;
+                    }
+                }
+            }
+        }
+    }
+    Some((inv, umax, umin))
+}
+
+/// `A^{-1} B` for a square nonsingular `A` (checked by the caller).
+pub fn solve<T: Scalar>(a: MatRef<'_, T>, b: MatRef<'_, T>) -> Option<Mat<T>> {
+    if T::NATIVE {
+        return Some(a.partial_piv_lu().solve(b));
+    }
+    let (inv, _, _) = inverse(a)?;
+    Some(matmul(inv.as_ref(), b))
+}
+
+/// `A B`.
+pub fn matmul<T: Scalar>(a: MatRef<'_, T>, b: MatRef<'_, T>) -> Mat<T> {
+    if T::NATIVE {
+        return a * b;
+    }
+    let mut c = Mat::<T>::zeros(a.nrows(), b.ncols());
+    for j in 0..b.ncols() {
+        for k in 0..a.ncols() {
+            let f = b[(k, j)];
+            if f != T::zero() {
+                for i in 0..a.nrows() {
+                    let v = c[(i, j)] + a[(i, k)] * f;
+                    c[(i, j)] = v;
+                }
+            }
+        }
+    }
+    c
+}
+
+/// `A x`.
+pub fn matvec<T: Scalar>(a: MatRef<'_, T>, x: faer::ColRef<'_, T>) -> Col<T> {
+    if T::NATIVE {
+        return a * x;
+    }
+    let mut y = Col::<T>::zeros(a.nrows());
+    for k in 0..a.ncols() {
+        let f = x[k];
+        if f != T::zero() {
+            for i in 0..a.nrows() {
+                let v = y[i] + a[(i, k)] * f;
+                y[i] = v;
+            }
+        }
+    }
+    y
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn check<T: Scalar>(tol: f64) {
+        for n in [1usize, 2, 5, 17, 40] {
+            let a = Mat::<T>::from_fn(n, n, |i, j| {
+                T::from_f64(if i == j {
+                    4.0
+                } else {
+                    1.0 / (1.0 + i as f64 + 2.0 * j as f64)
+                })
+            });
+            let (inv, _, _) = inverse(a.as_ref()).unwrap();
+            let prod = matmul(a.as_ref(), inv.as_ref());
+            for i in 0..n {
+                for j in 0..n {
+                    let e = prod[(i, j)].to_f64() - if i == j { 1.0 } else { 0.0 };
+                    assert!(e.abs() < tol, "{} n={n} ({i},{j}) {e}", T::NAME);
+                }
+            }
+            let b = Mat::<T>::from_fn(n, 2, |i, j| T::from_f64((i + j) as f64));
+            let x = solve(a.as_ref(), b.as_ref()).unwrap();
+            let r = matmul(a.as_ref(), x.as_ref());
+            for i in 0..n {
+                assert!((r[(i, 1)].to_f64() - (i + 1) as f64).abs() < tol * 10.0);
+            }
+        }
+    }
+
+    #[test]
+    fn kernels_in_all_precisions() {
+        check::<f32>(1e-5);
+        check::<f64>(1e-13);
+        check::<faer::fx128>(1e-28);
+    }
+}
