@@ -80,6 +80,11 @@ pub(crate) struct Engine<'a, T: Scalar> {
     since_refactor: usize,
     pub max_cond: f64,
     pivot_tol: T,
+    /// Print every pivot to stderr (environment variable `PLCP_TRACE` set).
+    trace_pivots: bool,
+    /// The pivot tolerance times the basis condition estimate (clamped to
+    /// `[1, 1e6]`): entries of `B^{-1} a` below `noise * max|B^{-1} a|` are rounding.
+    noise: T,
     tie_tol: T,
 }
 
@@ -134,6 +139,8 @@ impl<'a, T: Scalar> Engine<'a, T> {
             since_refactor: 0,
             max_cond: 1.0,
             pivot_tol: T::from_f64(settings.pivot_tol_eps) * T::eps(),
+            noise: T::from_f64(settings.pivot_tol_eps) * T::eps(),
+            trace_pivots: std::env::var_os("PLCP_TRACE").is_some(),
             tie_tol: T::from_f64(settings.tie_tol_eps) * T::eps(),
         };
         for (r, v) in basis.iter().enumerate() {
@@ -169,6 +176,7 @@ impl<'a, T: Scalar> Engine<'a, T> {
         self.refactorisations += 1;
         self.since_refactor = 0;
         self.max_cond = self.max_cond.max(cond);
+        self.noise = self.pivot_tol * T::from_f64(cond.clamp(1.0, 1e6));
         let rhs = self.rhs();
         let xnew = self.factor.solve(&rhs);
         // snap tiny negatives of sign-constrained basics (drift) to zero
@@ -310,7 +318,7 @@ impl<'a, T: Scalar> Engine<'a, T> {
         if colmax == T::zero() {
             return None;
         }
-        let ptol = self.pivot_tol * colmax;
+        let ptol = self.noise * colmax;
         // artificial variables are fixed at zero: any move blocks them
         let mut art: Option<usize> = None;
         for r in 0..self.dim {
@@ -374,6 +382,17 @@ impl<'a, T: Scalar> Engine<'a, T> {
     /// Pivot `entering` (column `col = B^{-1} a`, value `value`) into row `r`.
     fn pivot(&mut self, r: usize, entering: Var, col: &Col<T>, value: T) -> Result<(), String> {
         let leaving = self.basis[r];
+        if self.trace_pivots {
+            eprintln!(
+                "pivot {}: {} in for {} at {r}, pivot {:e}, value {:e}, L {:e}",
+                self.pivots,
+                entering,
+                leaving,
+                col[r].to_f64(),
+                value.to_f64(),
+                self.lambda.to_f64()
+            );
+        }
         let li = self.var_index(leaving);
         self.pos[li] = None;
         let ei = self.var_index(entering);
@@ -409,7 +428,7 @@ impl<'a, T: Scalar> Engine<'a, T> {
             }
             let col = self.column(Var::U(j));
             let colmax = (0..self.dim).fold(T::zero(), |a, i| a.max(col[i].abs()));
-            if col[l].abs() > self.pivot_tol * colmax
+            if col[l].abs() > self.noise * colmax
                 && best.as_ref().is_none_or(|(_, c)| col[l].abs() > c[l].abs())
             {
                 best = Some((j, col));
@@ -449,7 +468,7 @@ impl<'a, T: Scalar> Engine<'a, T> {
                     None => T::zero(),
                 },
             };
-            let rate_tol = self.pivot_tol * colmax.max(T::one());
+            let rate_tol = self.noise * colmax.max(T::one());
             let rising = rate > rate_tol;
             let moving = rate.abs() > rate_tol;
             let block = self.ratio_test(&col);
@@ -644,7 +663,7 @@ impl<'a, T: Scalar> Engine<'a, T> {
             return self.free_vertical_move(&rho, driver);
         };
         let y = self.column(v);
-        if y[r].abs() <= self.pivot_tol * (0..self.dim).fold(T::one(), |a, i| a.max(y[i].abs())) {
+        if y[r].abs() <= self.noise * (0..self.dim).fold(T::one(), |a, i| a.max(y[i].abs())) {
             return Ok(false);
         }
         self.degenerate_pivots += 1;
@@ -675,7 +694,7 @@ impl<'a, T: Scalar> Engine<'a, T> {
                     dot = dot + rho[k] * a[k];
                     anorm = anorm.max(a[k].abs());
                 }
-                if dot.abs() <= self.pivot_tol * anorm {
+                if dot.abs() <= self.noise * anorm {
                     continue;
                 }
                 for j in 0..self.p {
@@ -684,7 +703,7 @@ impl<'a, T: Scalar> Engine<'a, T> {
                     }
                     let ytrue = self.column(Var::U(j));
                     let ymax = (0..self.dim).fold(T::zero(), |acc, k| acc.max(ytrue[k].abs()));
-                    let ptol = self.pivot_tol * ymax;
+                    let ptol = self.noise * ymax;
                     if ytrue[rc].abs() <= ptol {
                         continue;
                     }
@@ -751,7 +770,7 @@ impl<'a, T: Scalar> Engine<'a, T> {
             for r in 0..self.dim {
                 if matches!(self.basis[r], Var::W(_))
                     && self.x[r].abs() <= self.tie_tol * scale
-                    && y[r].abs() > self.pivot_tol * ymax
+                    && y[r].abs() > self.noise * ymax
                     && best.is_none_or(|b| y[r].abs() > y[b].abs())
                 {
                     best = Some(r);
