@@ -62,6 +62,14 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
                 None => cells.push(format!("{:>22}", "-")),
             }
         }
+        let residual = a.solution.info.residual.worst();
+        if !a.solution.status.is_success() || residual > 1e-8 {
+            println!(
+                "{n:>5}   plcp's path is not a solution (status {}, residual {residual:.1e}): row withheld",
+                a.solution.status.as_str()
+            );
+            continue;
+        }
         println!(
             "{n:>5} {:>10.6} | {:>22} {:>22} {:>22} | {err:>9.2e}   ({:.1} s, {} pivots)",
             a.reading.collapse_load().unwrap_or(f64::NAN),

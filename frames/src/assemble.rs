@@ -25,6 +25,10 @@
 //! indeterminate free block for frames whose axial forces are not statically
 //! determined.
 //!
+//! **Tied sections.** Where two sections meet at a node with a free,
+//! massless, unloaded rotation, only the weaker one carries yield modes (see
+//! `rigid_sections`): one physical hinge, one pair of yield modes.
+//!
 //! **What is left out.** Supported coordinates, and every part of the system
 //! that carries no load and is decoupled from the loaded part (found as the
 //! connected components of the sparsity graph of system (9)): its solution is
@@ -147,6 +151,9 @@ pub struct LeftOut {
     pub decoupled_forces: Vec<MemberForce>,
     /// Yield modes of those parts.
     pub decoupled_modes: usize,
+    /// Sections made rigid because they are tied to a weaker (or equal) one at
+    /// the same node: the pair's hinge is carried by the other section alone.
+    pub tied_sections: Vec<usize>,
 }
 
 /// System (9) of a frame, with what was left out.
@@ -314,6 +321,34 @@ fn full_blocks(frame: &Frame) -> Full {
     }
 }
 
+/// Tied pairs: where exactly two sections meet at a node whose rotation is
+/// free, without rotary inertia or applied moment, node equilibrium makes
+/// their moments equal and only the split of the hinge rotation between them
+/// would differ (fact 4 of the notes). The stronger section of each pair (the
+/// later one on a tie) gets no yield modes: the same mechanisms and the same
+/// dissipation, without duplicate yield rows, non-unique node rotations and
+/// the degenerate pivots they cause.
+fn rigid_sections(frame: &Frame, sections: &[CriticalSection]) -> Vec<bool> {
+    let mut at_node: Vec<Vec<usize>> = vec![Vec::new(); frame.nodes.len()];
+    for (k, s) in sections.iter().enumerate() {
+        at_node[s.node].push(k);
+    }
+    let mut rigid = vec![false; sections.len()];
+    for (i, secs) in at_node.iter().enumerate() {
+        let n = &frame.nodes[i];
+        if secs.len() == 2 && !n.fixed[2] && n.inertia == 0.0 && n.load[2] == 0.0 {
+            let (a, b) = (secs[0], secs[1]);
+            let drop = if sections[b].plastic_moment >= sections[a].plastic_moment {
+                b
+            } else {
+                a
+            };
+            rigid[drop] = true;
+        }
+    }
+    rigid
+}
+
 /// A coordinate that the load can accelerate without limit: it moves in a
 /// mechanism that carries no mass (rotations of a lumped model carry none
 /// unless `j` is given). `None` if there is none.
@@ -362,7 +397,8 @@ impl System {
     /// // four elements: y and rz at four free nodes, two end moments each;
     /// // the axial motion (x, N) is unloaded and decoupled, so it is left out
     /// assert_eq!((sys.full.coordinates, sys.full.forces, sys.full.modes), (12, 12, 16));
-    /// assert_eq!((sys.coordinates.len(), sys.forces.len(), sys.modes.len()), (8, 8, 16));
+    /// // the tied sections at the three inner nodes keep one pair of yield modes each
+    /// assert_eq!((sys.coordinates.len(), sys.forces.len(), sys.modes.len()), (8, 8, 10));
     /// assert!(sys.is_determinate());
     /// ```
     pub fn assemble(frame: &Frame) -> System {
@@ -394,7 +430,10 @@ impl System {
         let keep: Vec<bool> = (0..nb + ns + np).map(|v| loaded[dsu.find(v)]).collect();
         let kc: Vec<usize> = (0..nb).filter(|&j| keep[j]).collect();
         let kf: Vec<usize> = (0..ns).filter(|&r| keep[nb + r]).collect();
-        let km: Vec<usize> = (0..np).filter(|&k| keep[nb + ns + k]).collect();
+        let rigid = rigid_sections(frame, &f.sections);
+        let km: Vec<usize> = (0..np)
+            .filter(|&k| keep[nb + ns + k] && !rigid[k / 2])
+            .collect();
         let mut left_out = LeftOut {
             supported: f.supported.clone(),
             loads_on_supports: f.loads_on_supports.clone(),
@@ -408,7 +447,10 @@ impl System {
                 left_out.decoupled_forces.push(f.forces[r]);
             }
         }
-        left_out.decoupled_modes = np - km.len();
+        left_out.tied_sections = (0..f.sections.len())
+            .filter(|&k| rigid[k] && keep[nb + k])
+            .collect();
+        left_out.decoupled_modes = np - km.len() - 2 * left_out.tied_sections.len();
         let a = Mat::from_fn(kf.len(), kc.len(), |i, j| f.a[(kf[i], kc[j])]);
         let mut tn = Mat::<f64>::zeros(kf.len(), km.len());
         let modes: Vec<YieldMode> = km
@@ -624,7 +666,7 @@ fx = 1.0
         let s = System::assemble(&scene(PORTAL).frame);
         assert_eq!(s.coordinates.len(), 9);
         assert_eq!(s.forces.len(), 12);
-        assert_eq!(s.modes.len(), 16);
+        assert_eq!(s.modes.len(), 10);
         assert_eq!(s.indeterminacy(), 3);
         assert_eq!(s.rigid_body_freedom(), 0);
         assert!(!s.is_determinate());

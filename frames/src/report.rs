@@ -108,6 +108,12 @@ impl Analysis {
                 names.join(", ")
             ));
         }
+        if !lo.tied_sections.is_empty() {
+            out.push(format!(
+                "yield modes of {} tied sections (at a node joining two sections, the hinge is carried by the weaker one)",
+                lo.tied_sections.len()
+            ));
+        }
         if !lo.decoupled_coordinates.is_empty() || !lo.decoupled_forces.is_empty() {
             let mut by_comp = std::collections::BTreeMap::new();
             for &(n, c) in &lo.decoupled_coordinates {

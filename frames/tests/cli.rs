@@ -165,7 +165,7 @@ fn json_has_the_contract_keys() {
             assert!(v.get(k).is_some(), "missing {k}");
         }
         assert_eq!(v["system"]["free"], 16);
-        assert_eq!(v["system"]["complementary"], 16);
+        assert_eq!(v["system"]["complementary"], 10);
         let b = &v["breakpoints"][0];
         assert!((b["lambda"].as_f64().unwrap() - 1.0).abs() < 1e-12);
         for k in ["yielded", "flow_started", "flow_stopped", "unloaded"] {
@@ -220,7 +220,7 @@ fn export_prints_plcps_json() {
         .unwrap();
     assert!(out.status.success());
     let p = plcp::io::json::parse_plcp::<f64>(&out.stdout, "export").unwrap();
-    assert_eq!((p.free(), p.n()), (16, 16));
+    assert_eq!((p.free(), p.n()), (16, 10));
 }
 
 #[test]
