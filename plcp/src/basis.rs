@@ -130,7 +130,7 @@ fn product_form_update<T: Scalar>(inv: &mut Mat<T>, k: usize, r: usize, y: &[T])
             let col = col.subrows_mut(0, k);
             for (i, c) in col.iter_mut().enumerate() {
                 if i != r {
-                    *c = *c - y[i] * f;
+                    *c -= y[i] * f;
                 }
             }
         }
@@ -353,7 +353,7 @@ impl<T: Scalar> BasisFactor<T> for BlockInverse<T> {
                 let mut v = c[self.bpos[b]];
                 for i in 0..self.dim {
                     if self.row_block[i].is_none() {
-                        v = v - self.g[(i, b)] * pi[i];
+                        v -= self.g[(i, b)] * pi[i];
                     }
                 }
                 v
@@ -362,7 +362,7 @@ impl<T: Scalar> BasisFactor<T> for BlockInverse<T> {
         for a in 0..k {
             let mut v = T::zero();
             for (b, tb) in t.iter().enumerate() {
-                v = v + self.sinv[(b, a)] * *tb;
+                v += self.sinv[(b, a)] * *tb;
             }
             pi[self.rows[a]] = v;
         }

@@ -159,7 +159,7 @@ pub fn solve_lcp<T: Scalar>(
     let mut w = lcp.q.clone();
     for j in 0..n {
         for i in 0..n {
-            w[i] = w[i] + lcp.m[(i, j)] * point.z[j];
+            w[i] += lcp.m[(i, j)] * point.z[j];
         }
     }
     let pt = Point {

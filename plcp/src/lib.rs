@@ -52,6 +52,8 @@
 //! assert!(at.w.iter().zip(at.z.iter()).all(|(w, z)| *w >= -1e-12 && *z >= -1e-12));
 //! ```
 #![warn(missing_docs)]
+// Index loops read like the formulas they implement in the numeric kernels.
+#![allow(clippy::needless_range_loop)]
 
 pub mod basis;
 pub mod error;

@@ -55,8 +55,8 @@ pub fn inverse<T: Scalar>(a: MatRef<'_, T>) -> Option<(Mat<T>, f64, f64)> {
         }
         let rp = T::one() / pv;
         for j in 0..n {
-            w[(k, j)] = w[(k, j)] * rp;
-            inv[(k, j)] = inv[(k, j)] * rp;
+            w[(k, j)] *= rp;
+            inv[(k, j)] *= rp;
         }
         for i in 0..n {
             if i != k {

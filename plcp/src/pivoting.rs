@@ -286,6 +286,7 @@ impl<'a, T: Scalar> Engine<'a, T> {
         b
     }
 
+    #[allow(clippy::too_many_arguments)]
     fn record_segment(
         &self,
         rec: &mut Recorder<T>,
@@ -631,7 +632,7 @@ impl<'a, T: Scalar> Engine<'a, T> {
             let mut dot = T::zero();
             let mut anorm = T::zero();
             for i in 0..this.dim {
-                dot = dot + rho[i] * a[i];
+                dot += rho[i] * a[i];
                 anorm = anorm.max(a[i].abs());
             }
             if dot.abs() <= this.pivot_tol * anorm.max(T::one()) {
@@ -691,7 +692,7 @@ impl<'a, T: Scalar> Engine<'a, T> {
                 let mut dot = T::zero();
                 let mut anorm = T::one();
                 for k in 0..self.dim {
-                    dot = dot + rho[k] * a[k];
+                    dot += rho[k] * a[k];
                     anorm = anorm.max(a[k].abs());
                 }
                 if dot.abs() <= self.noise * anorm {
@@ -893,8 +894,8 @@ pub(crate) fn start_phase<T: Scalar>(
         da[r] = -h[r] / a;
     }
     for i in 0..n {
-        qa[p + i] = qa[p + i] + a * c(i);
-        da[p + i] = da[p + i] - c(i);
+        qa[p + i] += a * c(i);
+        da[p + i] -= c(i);
     }
     let ill = |m: String| StartFailure {
         status: Status::IllConditioned,

@@ -107,7 +107,7 @@ impl<T: Scalar> Reduction<T> {
         Col::from_fn(p, |i| {
             let mut s = self.g[(i, n)] + lambda * self.g[(i, n + 1)];
             for j in 0..n {
-                s = s + self.g[(i, j)] * z[j];
+                s += self.g[(i, j)] * z[j];
             }
             -s
         })
@@ -120,7 +120,7 @@ impl<T: Scalar> Reduction<T> {
         Col::from_fn(p, |i| {
             let mut s = self.g[(i, n + 1)];
             for j in 0..n {
-                s = s + self.g[(i, j)] * dz[j];
+                s += self.g[(i, j)] * dz[j];
             }
             -s
         })

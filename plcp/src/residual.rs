@@ -39,11 +39,11 @@ pub fn residual_parts<T: Scalar>(
             .max((l * d[r].to_f64()).abs());
         for j in 0..p + n {
             let xj = if j < p { point.u[j] } else { point.z[j - p] };
-            acc = acc + m[(r, j)] * xj;
+            acc += m[(r, j)] * xj;
             scale = scale.max((m[(r, j)].to_f64() * x[j]).abs());
         }
         if r >= p {
-            acc = acc - point.w[r - p];
+            acc -= point.w[r - p];
             scale = scale.max(point.w[r - p].to_f64().abs());
         }
         eq = eq.max(acc.to_f64().abs() / scale);

@@ -135,6 +135,11 @@ impl core::str::FromStr for Precision {
     }
 }
 
+/// Positive infinity in `T`.
+pub fn infinity<T: Scalar>() -> T {
+    math_utils::infinity::<T>()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -144,7 +149,7 @@ mod tests {
         assert_eq!(x.to_f64(), 1.5);
         assert!(T::eps() > T::zero());
         assert_eq!((-x).abs().to_f64(), 1.5);
-        assert!(T::from_f64(f64::NAN).is_finite() == false);
+        assert!(!T::from_f64(f64::NAN).is_finite());
     }
 
     #[test]
@@ -154,9 +159,4 @@ mod tests {
         roundtrip::<faer::fx128>();
         assert!(faer::fx128::eps().to_f64() < 1e-30);
     }
-}
-
-/// Positive infinity in `T`.
-pub fn infinity<T: Scalar>() -> T {
-    math_utils::infinity::<T>()
 }

@@ -95,13 +95,13 @@ impl Equilibration {
         let rw: Vec<T> = (0..n).map(|i| T::from_f64(self.rows[p + i])).collect();
         let fix = |z: &mut Col<T>, w: &mut Col<T>, u: &mut Col<T>| {
             for i in 0..z.nrows() {
-                z[i] = z[i] * cz[i];
+                z[i] *= cz[i];
             }
             for i in 0..w.nrows() {
-                w[i] = w[i] / rw[i];
+                w[i] /= rw[i];
             }
             for j in 0..u.nrows() {
-                u[j] = u[j] * cu[j];
+                u[j] *= cu[j];
             }
         };
         let mut res = Residual::default();
