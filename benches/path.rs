@@ -1,49 +1,182 @@
-//! The full path on random dense monotone PLCPs, Lemke against Wolfe.
+//! The full path on random dense monotone PLCPs: Lemke against Wolfe, f32 /
+//! f64 / fx128, block against dense basis inverse, and Clarabel (interior
+//! point) in the same run as the peer.
 //!
-//! Instances: `plcp_workspace::random::bench_instance(n, seed = 1)` for
-//! n = 50, 200, 1000: `M = B B'/n + 0.1 I` (`B` standard Gaussian), `q` uniform in
-//! `[0.1, 1]`, `d` Gaussian minus 0.5, `lambda_max` midway between the `n/2`-th and
-//! `(n/2 + 1)`-th breakpoints of the full path (so each timed solve does about
-//! `n/2` pivots and ends with `Reached`). The instance is built (and its full
-//! path traced once) outside the timed loop.
+//! ```sh
+//! cargo bench --bench path                      # n = 50 ... 2000
+//! PLCP_BENCH_MAX_N=500 cargo bench --bench path # stop at n = 500
+//! PLCP_BENCH_FULL=1 cargo bench --bench path    # every variant at every n
+//! ```
 //!
-//! Sample sizes are criterion's minimum (10) with short measurement times, so
-//! that `cargo bench --bench path` finishes in a few minutes; n = 1000 takes
-//! most of it.
+//! Instances: `plcp_workspace::random::path_instance(n, seed = 1)` (the same
+//! problem and `lambda_max` as `bench_instance`) for n = 50, 200, 500, 1000,
+//! 2000: `M = B B'/n + 0.1 I` (`B` standard Gaussian), `q` uniform in
+//! `[0.1, 1]`, `d` Gaussian minus 0.5, `lambda_max` midway between the `n/2`-th
+//! and `(n/2 + 1)`-th breakpoints (found by a first solve outside the timing),
+//! so each timed solve does about `n/2` pivots and ends with `Reached`.
+//!
+//! Groups (criterion ids `group/variant/n`):
+//!
+//! * `path/{lemke,wolfe}-{f32,f64,f128}-{block,dense}`: `plcp::solve` with the
+//!   default settings but for the method and basis. fx128 runs for n <= 200
+//!   only; for n >= 1000 only f64 runs (and the dense basis only with
+//!   `PLCP_BENCH_FULL=1`), because one solve takes seconds there.
+//! * `clarabel/{lmax,k10,k100}`: Clarabel 0.11 on the QP
+//!   `min 1/2 z'Mz + (q + L d)'z, z >= 0` at `L_max` alone, and at K = 10 and
+//!   100 evenly spaced values of `L` (the path approximated by re-solving;
+//!   one solver object, `update_q` between solves). K = 100 for n <= 500 and
+//!   K = 10 for n <= 1000 unless `PLCP_BENCH_FULL=1`.
+//!
+//! Sample sizes are criterion's minimum (10) with short measurement times. A
+//! variant whose single run takes more than half a second (n >= 1000) is run
+//! once and that one time is reported for every sample (`iter_custom` with a
+//! cached measurement): criterion's statistics are then meaningless, the
+//! figure is a single wall-clock run.
 
-use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
-use plcp::{Method, Settings, Status};
-use plcp_workspace::random::bench_instance;
-use std::time::Duration;
+use criterion::{criterion_group, criterion_main, BenchmarkGroup, BenchmarkId, Criterion};
+use plcp::{BasisKind, Method, Plcp, Scalar, Settings};
+use plcp_workspace::random::path_instance;
+use std::time::{Duration, Instant};
+
+#[path = "../examples/common/speed/peer.rs"]
+mod peer;
+
+fn sizes() -> Vec<usize> {
+    let max_n = std::env::var("PLCP_BENCH_MAX_N")
+        .ok()
+        .and_then(|s| s.parse().ok())
+        .unwrap_or(2000usize);
+    [50usize, 200, 500, 1000, 2000]
+        .into_iter()
+        .filter(|&n| n <= max_n)
+        .collect()
+}
+
+fn full() -> bool {
+    std::env::var_os("PLCP_BENCH_FULL").is_some()
+}
+
+/// Above this size a variant is run once (see the module doc).
+const ONE_SHOT_N: usize = 1000;
+
+/// Times `f`: criterion's sampling for small `n`, one cached run for large `n`.
+fn bench<M: criterion::measurement::Measurement<Value = Duration>>(
+    group: &mut BenchmarkGroup<'_, M>,
+    id: BenchmarkId,
+    n: usize,
+    mut f: impl FnMut(),
+) {
+    if n < ONE_SHOT_N {
+        group.bench_function(id, |b| b.iter(&mut f));
+    } else {
+        let mut once: Option<Duration> = None;
+        group.bench_function(id, |b| {
+            b.iter_custom(|iters| {
+                let t = *once.get_or_insert_with(|| {
+                    let start = Instant::now();
+                    f();
+                    start.elapsed()
+                });
+                t * iters as u32
+            })
+        });
+    }
+}
+
+fn variant<T: Scalar>(
+    group: &mut BenchmarkGroup<'_, criterion::measurement::WallTime>,
+    problem: &Plcp<f64>,
+    n: usize,
+    method: Method,
+    basis: BasisKind,
+) {
+    let problem: Plcp<T> = problem.cast();
+    let mut settings = Settings::<T>::with_method(method);
+    settings.basis = basis;
+    // outside the timing: the instance does what the docs say
+    let path = plcp::solve(&problem, &settings).expect("valid settings");
+    assert!(
+        path.status.is_success(),
+        "{method:?} {} {basis:?}, n = {n}: {:?} ({})",
+        T::NAME,
+        path.status,
+        path.message
+    );
+    let name = format!(
+        "{}-{}-{}",
+        match method {
+            Method::Lemke => "lemke",
+            Method::Wolfe => "wolfe",
+        },
+        T::NAME,
+        match basis {
+            BasisKind::Block => "block",
+            BasisKind::Dense => "dense",
+        }
+    );
+    bench(group, BenchmarkId::new(name, n), n, || {
+        std::hint::black_box(plcp::solve(&problem, &settings).expect("valid settings"));
+    });
+}
 
 fn full_path(c: &mut Criterion) {
     let mut group = c.benchmark_group("path");
     group.sample_size(10);
-    group.warm_up_time(Duration::from_millis(500));
-    group.measurement_time(Duration::from_secs(3));
-    for n in [50usize, 200, 1000] {
-        let inst = bench_instance(n, 1);
+    group.warm_up_time(Duration::from_millis(300));
+    group.measurement_time(Duration::from_secs(2));
+    for n in sizes() {
+        let inst = path_instance(n, 1);
         for method in [Method::Lemke, Method::Wolfe] {
-            let settings = Settings::<f64>::with_method(method);
-            // outside the timing: the instance does what the docs say
-            let path = plcp::solve(&inst.problem, &settings).expect("valid settings");
-            assert!(
-                matches!(path.status, Status::Reached | Status::UnboundedRay),
-                "{method:?}, n = {n}: {:?} ({})",
-                path.status,
-                path.message
-            );
-            let name = match method {
-                Method::Lemke => "lemke",
-                Method::Wolfe => "wolfe",
+            for basis in [BasisKind::Block, BasisKind::Dense] {
+                if n >= ONE_SHOT_N && basis == BasisKind::Dense && !full() {
+                    continue;
+                }
+                variant::<f64>(&mut group, &inst.problem, n, method, basis);
+                if n < ONE_SHOT_N || full() {
+                    variant::<f32>(&mut group, &inst.problem, n, method, basis);
+                }
+                if n <= 200 {
+                    variant::<faer::fx128>(&mut group, &inst.problem, n, method, basis);
+                }
+            }
+        }
+    }
+    group.finish();
+}
+
+fn clarabel(c: &mut Criterion) {
+    let mut group = c.benchmark_group("clarabel");
+    group.sample_size(10);
+    group.warm_up_time(Duration::from_millis(300));
+    group.measurement_time(Duration::from_secs(2));
+    for n in sizes() {
+        let inst = path_instance(n, 1);
+        let lmax = inst
+            .problem
+            .lambda_max()
+            .expect("the instance has a finite lambda_max");
+        for (name, k) in [("lmax", 1usize), ("k10", 10), ("k100", 100)] {
+            let affordable = match k {
+                1 => true,
+                10 => n <= 1000,
+                _ => n <= 500,
             };
-            group.bench_with_input(BenchmarkId::new(name, n), &inst.problem, |b, p| {
-                b.iter(|| plcp::solve(p, &settings).expect("valid settings"))
+            if !affordable && !full() {
+                continue;
+            }
+            let problem = &inst.problem;
+            bench(&mut group, BenchmarkId::new(name, n), n, || {
+                std::hint::black_box(peer::clarabel_samples(
+                    problem,
+                    lmax,
+                    k,
+                    peer::Tolerance::Default,
+                ));
             });
         }
     }
     group.finish();
 }
 
-criterion_group!(benches, full_path);
+criterion_group!(benches, full_path, clarabel);
 criterion_main!(benches);

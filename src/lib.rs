@@ -103,4 +103,32 @@ pub mod random {
         }
         inst
     }
+
+    /// The same instance as [`bench_instance`] (same problem, same `lambda_max`),
+    /// found more cheaply: the first solve stops after `n/2 + 2` pivots
+    /// (`max_pivots`) instead of tracing the whole path, which halves the set-up
+    /// cost of the large benches. The pivot sequence does not depend on
+    /// `max_pivots`, so the breakpoints, and `lambda_max`, are the same.
+    ///
+    /// ```
+    /// use plcp_workspace::random::{bench_instance, path_instance};
+    /// let (a, b) = (bench_instance(40, 3), path_instance(40, 3));
+    /// assert_eq!(a.problem.lambda_max(), b.problem.lambda_max());
+    /// ```
+    pub fn path_instance(n: usize, seed: u64) -> RandomPlcp {
+        let mut inst = dense_monotone(n, seed);
+        let settings = Settings {
+            max_pivots: Some(n / 2 + 2),
+            ..Settings::default()
+        };
+        let head = plcp::solve(&inst.problem, &settings).expect("default settings are valid");
+        if let Some(lm) = midway_after_breakpoint(&head, n / 2) {
+            inst.problem = inst
+                .problem
+                .clone()
+                .with_range(0.0, Some(lm))
+                .expect("lambda_max > 0");
+        }
+        inst
+    }
 }

@@ -1,0 +1,81 @@
+//! The frames cantilever (system (9), Wolfe's long form, f64): a uniform
+//! cantilever of length 1 (Mp = 1, mass per length 1, tip force from rest)
+//! cut into 10, 100, ... elements, the path traced to its unbounded ray (the
+//! hinge front sweeps from the root to the tip).
+//!
+//! ```sh
+//! cargo bench --bench cantilever                               # 10 and 100 elements
+//! PLCP_BENCH_CANTILEVER="10,100,200,1000" cargo bench --bench cantilever
+//! ```
+//!
+//! Timed: `frames::solve::solve` on the assembled system (assembly outside the
+//! timing; it is measured as `assemble/n`). The default sizes stop at 100
+//! elements: at the time of writing 200 elements take about 14 s and 1000 are
+//! out of reach (see `examples/speed_report.rs` and the README). Sizes above
+//! 100 are run once (`iter_custom` with a cached measurement).
+
+use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
+use frames::{Scene, SolveOptions, System};
+use std::time::{Duration, Instant};
+
+fn scene(n: usize) -> Scene {
+    let src = format!(
+        "[[node]]\nid = \"A\"\nx = 0.0\ny = 0.0\n[[node]]\nid = \"B\"\nx = 1.0\ny = 0.0\n\
+         [[member]]\nid = \"AB\"\nfrom = \"A\"\nto = \"B\"\nplastic_moment = 1.0\nmass_per_length = 1.0\nelements = {n}\n\
+         [[support]]\nnode = \"A\"\nfix = [\"x\", \"y\", \"rz\"]\n[[load]]\nnode = \"B\"\nfy = -1.0\n"
+    );
+    Scene::from_toml(&src, &format!("cantilever-{n}.toml")).expect("valid scene")
+}
+
+fn sizes() -> Vec<usize> {
+    std::env::var("PLCP_BENCH_CANTILEVER")
+        .ok()
+        .map(|s| s.split(',').filter_map(|t| t.trim().parse().ok()).collect())
+        .unwrap_or_else(|| vec![10, 100])
+}
+
+fn cantilever(c: &mut Criterion) {
+    let mut group = c.benchmark_group("cantilever");
+    group.sample_size(10);
+    group.warm_up_time(Duration::from_millis(300));
+    group.measurement_time(Duration::from_secs(3));
+    for n in sizes() {
+        let sc = scene(n);
+        group.bench_with_input(BenchmarkId::new("assemble", n), &sc, |b, sc| {
+            b.iter(|| System::assemble(&sc.frame))
+        });
+        let system = System::assemble(&sc.frame);
+        let options = SolveOptions::default();
+        if n <= 100 {
+            let sol = frames::solve::solve(&system, &options).expect("solvable");
+            assert!(sol.status.is_success(), "{n} elements: {:?}", sol.status);
+            group.bench_with_input(BenchmarkId::new("path", n), &system, |b, s| {
+                b.iter(|| frames::solve::solve(s, &options).expect("solvable"))
+            });
+        } else {
+            let mut once: Option<Duration> = None;
+            group.bench_with_input(BenchmarkId::new("path", n), &system, |b, s| {
+                b.iter_custom(|iters| {
+                    let t = *once.get_or_insert_with(|| {
+                        let start = Instant::now();
+                        let sol = frames::solve::solve(s, &options).expect("solvable");
+                        let t = start.elapsed();
+                        eprintln!(
+                            "cantilever {n}: {:.3} s, {} pivots, status {}, residual {:.1e}",
+                            t.as_secs_f64(),
+                            sol.info.pivots,
+                            sol.status.as_str(),
+                            sol.info.residual.worst()
+                        );
+                        t
+                    });
+                    t * iters as u32
+                })
+            });
+        }
+    }
+    group.finish();
+}
+
+criterion_group!(benches, cantilever);
+criterion_main!(benches);
