@@ -15,7 +15,20 @@
 //! so P xi / 3 = Mp. For each n the table gives the Lambda at which a hinge
 //! forms at x = 1/4, 1/2, 3/4 beside the continuum value.
 
-use frames::{Analysis, AnalysisOptions, Scene};
+use frames::{Analysis, AnalysisOptions, Scene, SolveOptions};
+use plcp::{Method, Precision};
+
+fn options(precision: Precision) -> AnalysisOptions {
+    AnalysisOptions {
+        solve: SolveOptions {
+            method: Method::Wolfe,
+            precision,
+            lambda_max: None,
+        },
+        samples: 11,
+        ..AnalysisOptions::default()
+    }
+}
 
 fn scene(n: usize) -> Result<Scene, frames::FramesError> {
     let src = format!(
@@ -35,13 +48,15 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     );
     for n in [4usize, 8, 16, 32, 64, 128, 256] {
         let t = std::time::Instant::now();
-        let a = Analysis::run(
-            scene(n)?,
-            &AnalysisOptions {
-                samples: 11,
-                ..AnalysisOptions::default()
-            },
-        )?;
+        // f64 first; where plcp's path does not satisfy system (9) well enough,
+        // the same path in double-double (fx128)
+        let mut a = Analysis::run(scene(n)?, &options(Precision::F64))?;
+        let mut precision = "f64";
+        if !a.solution.status.is_success() || a.solution.info.residual.worst() > 1e-6 {
+            // (at n = 256 this takes a few minutes)
+            a = Analysis::run(scene(n)?, &options(Precision::F128))?;
+            precision = "f128";
+        }
         let fr = &a.scene.frame;
         let at = |x: f64| {
             a.reading
@@ -63,7 +78,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             }
         }
         let residual = a.solution.info.residual.worst();
-        if !a.solution.status.is_success() || residual > 1e-8 {
+        if !a.solution.status.is_success() || residual > 1e-6 {
             println!(
                 "{n:>5}   plcp's path is not a solution (status {}, residual {residual:.1e}): row withheld",
                 a.solution.status.as_str()
@@ -71,7 +86,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             continue;
         }
         println!(
-            "{n:>5} {:>10.6} | {:>22} {:>22} {:>22} | {err:>9.2e}   ({:.1} s, {} pivots)",
+            "{n:>5} {:>10.6} | {:>22} {:>22} {:>22} | {err:>9.2e}   ({precision}, {:.1} s, {} pivots)",
             a.reading.collapse_load().unwrap_or(f64::NAN),
             cells[0],
             cells[1],

@@ -397,10 +397,10 @@ impl Analysis {
             self.solution.status.as_str(),
             info.residual.worst()
         );
-        if info.residual.worst() > 1e-8 {
+        if info.residual.worst() > 1e-6 {
             let _ = writeln!(
                 s,
-                "  WARNING: the solver's path does not satisfy system (9) (residual {:.1e}): do not trust the numbers below",
+                "  WARNING: the solver's path does not satisfy system (9) (residual {:.1e}): do not trust the numbers below (try --precision f128)",
                 info.residual.worst()
             );
         }
