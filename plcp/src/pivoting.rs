@@ -473,15 +473,6 @@ impl<'a, T: Scalar> Engine<'a, T> {
             let rising = rate > rate_tol;
             let moving = rate.abs() > rate_tol;
             let block = self.ratio_test(&col);
-            if let Some((r, _)) = block {
-                if matches!(self.basis[r], Var::Artificial(_)) {
-                    match self.admit_for_artificial(r, driver, &col) {
-                        Ok(true) => continue,
-                        Ok(false) => {}
-                        Err(msg) => return TraceEnd::IllConditioned(msg),
-                    }
-                }
-            }
             if let (true, Some(end)) = (rising, lambda_end) {
                 let theta_end = (end - self.lambda) / rate;
                 if block.as_ref().is_none_or(|(_, tb)| theta_end <= *tb) {
@@ -581,7 +572,7 @@ impl<'a, T: Scalar> Engine<'a, T> {
                     }
                     driver = next;
                 }
-                Var::Artificial(_) => match self.free_for_lambda() {
+                Var::Artificial(_) => match self.unlock_lambda() {
                     Ok(true) => driver = Var::Lambda,
                     Ok(false) => {
                         return TraceEnd::Stalled(format!(
@@ -610,66 +601,60 @@ impl<'a, T: Scalar> Engine<'a, T> {
         }
     }
 
-    /// An artificial variable (fixed at zero) at row `r` blocks the driver. If an
-    /// admissible variable can take its place at zero (a section already at yield
-    /// that may flow, a free variable), pivot it in and let the driver go on.
-    /// Prefers a variable that rises with the driver. Returns whether one was found.
-    fn admit_for_artificial(
-        &mut self,
-        r: usize,
-        driver: Var,
-        col: &Col<T>,
-    ) -> Result<bool, String> {
-        let mut e = Col::<T>::zeros(self.dim);
-        e[r] = T::one();
-        let rho = self.factor.solve_transpose(&e);
-        let mut best: Option<(Var, T, bool)> = None;
-        let mut consider = |v: Var, this: &Self| {
-            if !this.admissible(v, driver) {
-                return;
-            }
-            let a = var_column(this.m, &this.d, this.p, v);
-            let mut dot = T::zero();
-            let mut anorm = T::zero();
-            for i in 0..this.dim {
-                dot += rho[i] * a[i];
-                anorm = anorm.max(a[i].abs());
-            }
-            if dot.abs() <= this.pivot_tol * anorm.max(T::one()) {
-                return;
-            }
-            // rises with the driver when the signs differ (or when free)
-            let rises = matches!(v, Var::U(_)) || (dot > T::zero()) != (col[r] > T::zero());
-            let score = dot.abs() / anorm.max(T::eps());
-            let better = match &best {
-                None => true,
-                Some((_, s, br)) => (rises && !*br) || (rises == *br && score > *s),
-            };
-            if better {
-                best = Some((v, score, rises));
-            }
-        };
-        for i in 0..self.n {
-            consider(Var::W(i), self);
-            consider(Var::Z(i), self);
-        }
-        for j in 0..self.p {
-            consider(Var::U(j), self);
-        }
-        let Some((v, _, _)) = best else {
-            // a free variable may unlock a section by taking a slack's row at zero
-            if self.place_free_in_degenerate_rows()? > 0 {
+    /// After the driver took an equality row (an artificial variable left), `L` is
+    /// basic and something must take its place so that `L` can drive again: a
+    /// nonbasic free variable (a redundant member force, say); else an admissible
+    /// complementary variable (its complement nonbasic: a section at yield that
+    /// may flow); else first free a complementary variable by moving a free one
+    /// (a zero-length step) and try again. Returns false if nothing can.
+    fn unlock_lambda(&mut self) -> Result<bool, String> {
+        for _ in 0..=self.p + 1 {
+            if self.free_for_lambda()? {
                 return Ok(true);
             }
-            return self.free_vertical_move(&rho, driver);
-        };
-        let y = self.column(v);
-        if y[r].abs() <= self.noise * (0..self.dim).fold(T::one(), |a, i| a.max(y[i].abs())) {
-            return Ok(false);
+            let Some(l) = self.row_of(Var::Lambda) else {
+                return Ok(true);
+            };
+            let mut e = Col::<T>::zeros(self.dim);
+            e[l] = T::one();
+            let rho = self.factor.solve_transpose(&e);
+            let mut best: Option<(Var, T)> = None;
+            for i in 0..self.n {
+                for v in [Var::Z(i), Var::W(i)] {
+                    if !self.admissible(v, Var::Lambda) {
+                        continue;
+                    }
+                    let a = var_column(self.m, &self.d, self.p, v);
+                    let mut dot = T::zero();
+                    let mut anorm = T::one();
+                    for k in 0..self.dim {
+                        dot += rho[k] * a[k];
+                        anorm = anorm.max(a[k].abs());
+                    }
+                    let score = dot.abs() / anorm;
+                    if dot.abs() > self.noise * anorm && best.is_none_or(|(_, s)| score > s) {
+                        best = Some((v, score));
+                    }
+                }
+            }
+            if let Some((v, _)) = best {
+                let y = self.column(v);
+                let ymax = (0..self.dim).fold(T::zero(), |a, k| a.max(y[k].abs()));
+                if y[l].abs() > self.noise * ymax {
+                    // L leaves at its current value; v enters at zero
+                    self.degenerate_pivots += 1;
+                    self.pivot(l, v, &y, T::zero())?;
+                    return Ok(true);
+                }
+            }
+            if self.place_free_in_degenerate_rows()? > 0 {
+                continue;
+            }
+            if !self.free_vertical_move(&rho, Var::Lambda)? {
+                return Ok(false);
+            }
         }
-        self.degenerate_pivots += 1;
-        self.pivot(r, v, &y, T::zero())?;
-        Ok(true)
+        Ok(false)
     }
 
     /// When an artificial row (with left vector `rho`) can only be served by a
