@@ -49,7 +49,10 @@ pub enum Status {
     /// The last segment holds for every larger `L`: success when `lambda_max` is infinite.
     UnboundedRay,
     /// No solution on this path beyond `lambda_reached`: the method ended on a
-    /// secondary ray (`Path::ray` holds its direction).
+    /// secondary ray (`Path::ray` holds its direction), or (mixed form) an
+    /// equality row blocks every move of `L` there, in which case there is no
+    /// direction to show, `Path::ray` is `None` and `Path::message` says that the
+    /// path cannot be continued.
     SecondaryRay,
     /// The pivot limit was hit at `lambda_reached`.
     PivotLimit,

@@ -718,7 +718,10 @@ pub fn check_path<T: Scalar>(
                 return Err("UnboundedRay without a ray".into());
             }
         }
-        (Status::SecondaryRay, _) if path.ray.is_none() => {
+        // a path blocked by an equality row has no ray to show (documented on Status)
+        (Status::SecondaryRay, _)
+            if path.ray.is_none() && !path.message.contains("cannot be continued") =>
+        {
             return Err("SecondaryRay without a ray".into());
         }
         _ => {}
