@@ -26,6 +26,8 @@ fn options(precision: Precision) -> AnalysisOptions {
             lambda_max: None,
         },
         samples: 11,
+        // this example escalates itself, to say which precision each row used
+        escalate: false,
         ..AnalysisOptions::default()
     }
 }

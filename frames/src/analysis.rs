@@ -17,6 +17,9 @@ pub struct AnalysisOptions {
     pub t_end: Option<f64>,
     /// Number of evenly spaced times (the breakpoint crossings are added).
     pub samples: usize,
+    /// Re-solve in double-double (`fx128`) when the `f64` path ends early or
+    /// does not satisfy system (9) to 1e-6 (default `true`; only for `f64`).
+    pub escalate: bool,
 }
 
 impl Default for AnalysisOptions {
@@ -25,6 +28,7 @@ impl Default for AnalysisOptions {
             solve: SolveOptions::default(),
             t_end: None,
             samples: 201,
+            escalate: true,
         }
     }
 }
@@ -44,6 +48,8 @@ pub struct Analysis {
     pub reading: Reading,
     /// Accelerations, moments, time response.
     pub response: Response,
+    /// Set when the path was re-solved in a higher precision, and why.
+    pub note: Option<String>,
 }
 
 impl Analysis {
@@ -68,7 +74,25 @@ impl Analysis {
             }
         }
         let system = System::assemble(&scene.frame);
-        let solution = solve::solve(&system, &options.solve)?;
+        let mut solution = solve::solve(&system, &options.solve)?;
+        let mut note = None;
+        let poor = |s: &Solution| !s.status.is_success() || s.info.residual.worst() > 1e-6;
+        if options.escalate && options.solve.precision == plcp::Precision::F64 && poor(&solution) {
+            let wide = SolveOptions {
+                precision: plcp::Precision::F128,
+                ..options.solve
+            };
+            if let Ok(better) = solve::solve(&system, &wide) {
+                if !poor(&better) {
+                    note = Some(format!(
+                        "the f64 path was not good enough (status {}, residual {:.1e}): re-solved in f128",
+                        solution.status.as_str(),
+                        solution.info.residual.worst()
+                    ));
+                    solution = better;
+                }
+            }
+        }
         let reading = hinge::read(&scene.frame, &system, &solution.pieces, solution.tolerance);
         let mut t_end = options.t_end.unwrap_or_else(|| {
             response::default_t_end(&scene.history, &reading, options.solve.lambda_max)
@@ -108,6 +132,7 @@ impl Analysis {
             solution,
             reading,
             response,
+            note,
         })
     }
 }

@@ -196,6 +196,7 @@ impl Analysis {
             "residual": {"equation": info.residual.equation, "feasibility": info.residual.feasibility, "complementarity": info.residual.complementarity},
             "lambda_reached": num(self.solution.lambda_reached),
             "message": self.solution.message,
+            "note": self.note,
             "free_block": {"rank": info.free_block.rank, "nonbasic_free": info.free_block.nonbasic_free.len(), "dependent_rows": info.free_block.dependent_rows.len()},
         });
         let breakpoints: Vec<Value> = self
@@ -397,6 +398,9 @@ impl Analysis {
             self.solution.status.as_str(),
             info.residual.worst()
         );
+        if let Some(n) = &self.note {
+            let _ = writeln!(s, "  note: {n}");
+        }
         if info.residual.worst() > 1e-6 {
             let _ = writeln!(
                 s,

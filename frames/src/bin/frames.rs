@@ -36,8 +36,9 @@ enum Command {
         #[arg(long, default_value = "wolfe", value_parser = parse_method)]
         method: Method,
         /// Working precision of the solve: f32, f64 or f128.
-        #[arg(long, default_value = "f64", value_parser = parse_precision)]
-        precision: Precision,
+        /// (Default f64, re-solved in f128 when the f64 path is not a solution.)
+        #[arg(long, value_parser = parse_precision)]
+        precision: Option<Precision>,
         /// Largest Lambda to trace (default: infinity).
         #[arg(long, value_name = "X")]
         lambda_max: Option<f64>,
@@ -78,10 +79,11 @@ fn run(cli: Cli) -> Result<(), FramesError> {
             let options = AnalysisOptions {
                 solve: SolveOptions {
                     method,
-                    precision,
+                    precision: precision.unwrap_or(Precision::F64),
                     lambda_max,
                 },
                 t_end,
+                escalate: precision.is_none(),
                 ..AnalysisOptions::default()
             };
             let analysis = Analysis::run(scene, &options)?;
