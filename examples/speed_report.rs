@@ -374,9 +374,15 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             let (t, _) = best_of(5, || plcp::residual::residual(problem, &pt));
             t
         };
-        // one check per breakpoint in the pivoting loop, two per segment and one
-        // at the end in the unscaling (plcp/src/pivoting.rs, scaling.rs)
-        let checks = 3 * base.breakpoints + 2;
+        // one check per breakpoint in the pivoting loop and one at the end
+        // (plcp/src/pivoting.rs); if the equilibration is not the identity, two
+        // more per segment and one at the end in the unscaling (scaling.rs)
+        let identity = plcp::scaling::Equilibration::ruiz(problem, 8).is_identity();
+        let checks = if identity {
+            base.breakpoints + 1
+        } else {
+            3 * base.breakpoints + 2
+        };
         per_bp.push((
             n,
             base.breakpoints,
