@@ -55,7 +55,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         let mut a = Analysis::run(scene(n)?, &options(Precision::F64))?;
         let mut precision = "f64";
         if !a.solution.status.is_success() || a.solution.info.residual.worst() > 1e-6 {
-            // (at n = 256 this takes a few minutes)
+            // (at n = 256 this takes about 8 minutes on 2 cores)
             a = Analysis::run(scene(n)?, &options(Precision::F128))?;
             precision = "f128";
         }
