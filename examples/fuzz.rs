@@ -74,7 +74,7 @@ fn main() {
         sum.seconds = t0.elapsed().as_secs_f64();
         print!("{}", sum.table());
         println!("input #{idx}: {}", sum.last_desc);
-        for (_, (_, msg, _, desc)) in &sum.distinct {
+        for (_, msg, _, desc) in sum.distinct.values() {
             println!("\npanic: {msg}\ninput: {desc}");
         }
         return;
@@ -101,6 +101,9 @@ fn main() {
                 std::thread::sleep(Duration::from_millis(500));
                 for (k, (idx, _)) in slots.iter().enumerate() {
                     let cur = idx.load(Ordering::Relaxed);
+                    if cur == u64::MAX {
+                        continue;
+                    }
                     if cur != last[k] {
                         last[k] = cur;
                         since[k] = Instant::now();
@@ -119,7 +122,7 @@ fn main() {
             std::thread::spawn(move || {
                 let lo = (k * chunk).min(n);
                 let hi = ((k + 1) * chunk).min(n);
-                fuzz_core::run_range(
+                let sum = fuzz_core::run_range(
                     seed,
                     lo..hi,
                     &scenes,
@@ -135,7 +138,9 @@ fn main() {
                             );
                         }
                     },
-                )
+                );
+                slots[k as usize].0.store(u64::MAX, Ordering::Relaxed);
+                sum
             })
         })
         .collect();
@@ -153,7 +158,7 @@ fn main() {
     if !sum.distinct.is_empty() {
         let out = root.join("out");
         let _ = std::fs::create_dir_all(&out);
-        for (k, (_, (count, msg, idx, desc))) in sum.distinct.iter().enumerate() {
+        for (k, (count, msg, idx, desc)) in sum.distinct.values().enumerate() {
             let file = out.join(format!("fuzz-panic-{k}.txt"));
             let text = format!(
                 "panic ({count} times): {msg}\nfirst input: #{idx} (seed {seed}; reproduce: cargo run --release --example fuzz -- 1 --seed {seed} --only {idx})\n\n{desc}\n"

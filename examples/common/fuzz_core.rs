@@ -21,6 +21,8 @@
 //! Every call runs under `catch_unwind`; a panic hook records the message and
 //! its location instead of printing it.
 #![allow(dead_code)]
+// index loops read like the formulas they build
+#![allow(clippy::needless_range_loop)]
 
 use faer::{Col, Mat};
 use plcp::{BasisKind, Lcp, Method, Plcp, Scalar, Settings};
@@ -642,8 +644,10 @@ pub fn random_problem(rng: &mut ChaCha8Rng) -> RawProblem {
 }
 
 fn random_settings<T: Scalar>(rng: &mut ChaCha8Rng, n: usize) -> Settings<T> {
-    let mut s = Settings::<T>::default();
-    s.max_pivots = Some(rng.gen_range(1..=40));
+    let mut s = Settings::<T> {
+        max_pivots: Some(rng.gen_range(1..=40)),
+        ..Settings::default()
+    };
     if rng.gen_bool(0.2) {
         s.scaling = false;
     }
@@ -893,7 +897,11 @@ fn run_toml(cx: &mut Ctx, rng: &mut ChaCha8Rng, bytes: &[u8]) {
         if rng.gen_bool(0.1) {
             opts.t_end = Some(random_value(rng));
         }
-        let r = cx.call("Analysis::run", || {
+        let how = format!(
+            "toml Analysis::run ({:?}, t_end {:?})",
+            opts.solve, opts.t_end
+        );
+        let r = cx.call(&how, || {
             frames::Analysis::run(scene, &opts).map(|a| {
                 let _ = a.to_text();
                 let _ = a.to_json();

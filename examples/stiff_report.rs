@@ -1,0 +1,39 @@
+//! The stiff and extreme suite of issue 5, all cases (see
+//! `examples/common/stiff_core.rs`): for each case and precision (f32, f64,
+//! fx128) the status, the breakpoint error against the exact values or the
+//! fx128 path (for plain LCPs: the error of `z`), the largest residual
+//! (measured in fx128 on the original data), and whether the solver flagged
+//! trouble. `WRONG` marks a success whose error or residual exceeds the
+//! precision's allowance (f32 1e-2, f64 1e-8, fx128 1e-20).
+//!
+//! ```text
+//! cargo run --release --example stiff_report [-- --fast]
+//! ```
+
+#[path = "common/stiff_core.rs"]
+mod stiff_core;
+
+fn main() {
+    let fast = std::env::args().any(|a| a == "--fast");
+    let mut cases = stiff_core::cases();
+    match stiff_core::siconos_cases() {
+        Ok(c) => cases.extend(c),
+        Err(msg) => eprintln!("{msg}"),
+    }
+    print!("{}", stiff_core::header());
+    let mut wrong = 0;
+    let mut rows = 0;
+    for case in cases.iter().filter(|c| !fast || c.fast) {
+        for r in stiff_core::run_case(case) {
+            print!("{}", stiff_core::line(&r));
+            rows += 1;
+            wrong += r.wrong as usize;
+        }
+    }
+    println!(
+        "\n{rows} runs, {wrong} WRONG (success reported beyond the allowance: f32 {:e}, f64 {:e}, f128 {:e})",
+        stiff_core::allowance("f32"),
+        stiff_core::allowance("f64"),
+        stiff_core::allowance("f128")
+    );
+}
