@@ -656,6 +656,20 @@ impl Scene {
                 message: "the scene has no nonzero [[load]]: nothing would move".into(),
             });
         }
+        if self
+            .frame
+            .nodes
+            .iter()
+            .all(|n| (0..3).all(|c| n.load[c] == 0.0 || n.fixed[c]))
+        {
+            let line = self.load_lines.values().min().copied().unwrap_or(0);
+            return Err(FramesError::Scene {
+                file: self.file.clone(),
+                line,
+                key: "load".into(),
+                message: "every load acts on a supported component: the supports take it and nothing would move".into(),
+            });
+        }
         if let Some((node, comp)) = crate::assemble::massless_mechanism(&self.frame) {
             let n = &self.frame.nodes[node];
             let line = self

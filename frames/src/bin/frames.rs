@@ -6,6 +6,7 @@
 use clap::{Parser, Subcommand};
 use frames::{Analysis, AnalysisOptions, FramesError, Scene, SolveOptions};
 use plcp::{Method, Precision};
+use std::io::Write;
 use std::path::PathBuf;
 use std::process::ExitCode;
 
@@ -64,6 +65,11 @@ fn parse_precision(s: &str) -> Result<Precision, String> {
     s.parse()
 }
 
+/// Writes to stdout; a closed pipe (`frames run ... | head`) is not an error.
+fn out(text: &str) {
+    let _ = std::io::stdout().write_all(text.as_bytes());
+}
+
 fn run(cli: Cli) -> Result<(), FramesError> {
     match cli.command {
         Command::Run {
@@ -91,17 +97,16 @@ fn run(cli: Cli) -> Result<(), FramesError> {
                 let files = frames::plot::write_all(&analysis, &dir)?;
                 if !json {
                     for f in files {
-                        eprintln!("wrote {}", f.display());
+                        let _ = writeln!(std::io::stderr(), "wrote {}", f.display());
                     }
                 }
             }
             if json {
-                println!(
-                    "{}",
-                    serde_json::to_string_pretty(&analysis.to_json()).unwrap_or_default()
+                out(
+                    &(serde_json::to_string_pretty(&analysis.to_json()).unwrap_or_default() + "\n"),
                 );
             } else {
-                print!("{}", analysis.to_text());
+                out(&analysis.to_text());
             }
             Ok(())
         }
@@ -116,10 +121,7 @@ fn run(cli: Cli) -> Result<(), FramesError> {
             }
             let scene = Scene::from_file(&scene)?;
             let system = frames::System::assemble(&scene.frame);
-            println!(
-                "{}",
-                serde_json::to_string(&system.plcp_json(lambda_max)).unwrap_or_default()
-            );
+            out(&(serde_json::to_string(&system.plcp_json(lambda_max)).unwrap_or_default() + "\n"));
             Ok(())
         }
     }
@@ -131,7 +133,7 @@ fn main() -> ExitCode {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {
             let line = e.to_string().replace('\n', " ");
-            eprintln!("error: {line}");
+            let _ = writeln!(std::io::stderr(), "error: {line}");
             match e {
                 FramesError::Io { .. } if line.contains("write") => ExitCode::from(1),
                 _ => ExitCode::from(2),
