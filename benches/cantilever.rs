@@ -16,7 +16,7 @@
 //! unknowns) would take over an hour and are left out of the default run.
 //! Sizes above 100 are run once (`iter_custom` with a cached measurement).
 
-use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
+use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, SamplingMode};
 use frames::{Scene, SolveOptions, System};
 use std::time::{Duration, Instant};
 
@@ -39,6 +39,7 @@ fn sizes() -> Vec<usize> {
 fn cantilever(c: &mut Criterion) {
     let mut group = c.benchmark_group("cantilever");
     group.sample_size(10);
+    group.sampling_mode(SamplingMode::Flat);
     group.warm_up_time(Duration::from_millis(300));
     group.measurement_time(Duration::from_secs(3));
     for n in sizes() {
