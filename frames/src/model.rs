@@ -331,10 +331,17 @@ impl Ctx<'_> {
     }
     fn finite(&self, v: &Spanned<f64>, key: impl Into<String>) -> Result<f64, FramesError> {
         let x = *v.get_ref();
-        if x.is_finite() {
-            Ok(x)
-        } else {
+        if !x.is_finite() {
             self.err(v.span(), key, format!("must be a finite number, got {x}"))
+        } else if x.abs() > 1e100 {
+            // products of such numbers overflow in the solver
+            self.err(
+                v.span(),
+                key,
+                format!("{x:e} is out of range (at most 1e100 in magnitude)"),
+            )
+        } else {
+            Ok(x)
         }
     }
     fn positive(&self, v: &Spanned<f64>, key: impl Into<String>) -> Result<f64, FramesError> {

@@ -129,7 +129,36 @@ fn run(cli: Cli) -> Result<(), FramesError> {
 
 fn main() -> ExitCode {
     let cli = Cli::parse();
-    match run(cli) {
+    // a panic is a bug, reported on one line with exit code 3, never a backtrace
+    static PANIC: std::sync::Mutex<String> = std::sync::Mutex::new(String::new());
+    std::panic::set_hook(Box::new(|info| {
+        let msg = info
+            .payload()
+            .downcast_ref::<&str>()
+            .map(|s| s.to_string())
+            .or_else(|| info.payload().downcast_ref::<String>().cloned())
+            .unwrap_or_default();
+        let at = info
+            .location()
+            .map(|l| format!(" at {}:{}", l.file(), l.line()))
+            .unwrap_or_default();
+        if let Ok(mut p) = PANIC.lock() {
+            *p = format!("{msg}{at}");
+        }
+    }));
+    let result = match std::panic::catch_unwind(|| run(cli)) {
+        Ok(r) => r,
+        Err(_) => {
+            let msg = PANIC.lock().map(|p| p.clone()).unwrap_or_default();
+            let _ = writeln!(
+                std::io::stderr(),
+                "error: internal error (a bug, please report): {}",
+                msg.replace('\n', " ")
+            );
+            return ExitCode::from(3);
+        }
+    };
+    match result {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {
             let line = e.to_string().replace('\n', " ");
