@@ -7,7 +7,7 @@
 //! precision's allowance (f32 1e-2, f64 1e-8, fx128 1e-20).
 //!
 //! ```text
-//! cargo run --release --example stiff_report [-- --fast]
+//! cargo run --release --example stiff_report [-- --fast | --no-large]
 //! ```
 
 #[path = "common/stiff_core.rs"]
@@ -20,14 +20,21 @@ fn main() {
         Ok(c) => cases.extend(c),
         Err(msg) => eprintln!("{msg}"),
     }
+    if !fast && !std::env::args().any(|a| a == "--no-large") {
+        cases.push(stiff_core::large_case());
+    }
     print!("{}", stiff_core::header());
     let mut wrong = 0;
     let mut rows = 0;
     for case in cases.iter().filter(|c| !fast || c.fast) {
+        let t = std::time::Instant::now();
         for r in stiff_core::run_case(case) {
             print!("{}", stiff_core::line(&r));
             rows += 1;
             wrong += r.wrong as usize;
+        }
+        if t.elapsed().as_secs_f64() > 5.0 {
+            eprintln!("  ({}: {:.1} s)", case.name, t.elapsed().as_secs_f64());
         }
     }
     println!(
