@@ -84,6 +84,34 @@ pub use settings::{BasisKind, Method, Settings};
 /// problem whose free block is singular (use [`Method::Wolfe`] there). Every
 /// outcome of the algorithm itself is a [`Status`] in the returned path.
 pub fn solve<T: Scalar>(problem: &Plcp<T>, settings: &Settings<T>) -> Result<Path<T>, PlcpError> {
+    let mut path = solve_unchecked(problem, settings)?;
+    guard_residual(&mut path);
+    Ok(path)
+}
+
+/// A path that claims success must satisfy the problem: if its largest residual
+/// (measured on the original problem) exceeds `sqrt(eps)`, the status becomes
+/// `IllConditioned` with the evidence, never a confident wrong answer.
+fn guard_residual<T: Scalar>(path: &mut Path<T>) {
+    let limit = T::eps().to_f64().sqrt();
+    let worst = path.info.residual.worst();
+    if path.status.is_success() && !(worst <= limit) {
+        path.message = format!(
+            "the path's largest residual {worst:.3e} (equation {:.1e}, feasibility {:.1e}, complementarity {:.1e}) exceeds sqrt(eps) = {limit:.1e} in {}: the answer cannot be trusted; try a higher precision. {}",
+            path.info.residual.equation,
+            path.info.residual.feasibility,
+            path.info.residual.complementarity,
+            T::NAME,
+            path.message
+        );
+        path.status = Status::IllConditioned;
+    }
+}
+
+fn solve_unchecked<T: Scalar>(
+    problem: &Plcp<T>,
+    settings: &Settings<T>,
+) -> Result<Path<T>, PlcpError> {
     settings.validate(problem.n())?;
     let timer = std::time::Instant::now();
     let eq = if settings.scaling {

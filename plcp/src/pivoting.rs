@@ -81,7 +81,7 @@ pub(crate) struct Engine<'a, T: Scalar> {
     pub max_cond: f64,
     pivot_tol: T,
     /// Print every pivot to stderr (environment variable `PLCP_TRACE` set).
-    trace_pivots: bool,
+    pub(crate) trace_pivots: bool,
     /// The pivot tolerance times the basis condition estimate (clamped to
     /// `[1, 1e6]`): entries of `B^{-1} a` below `noise * max|B^{-1} a|` are rounding.
     noise: T,
@@ -392,6 +392,14 @@ impl<'a, T: Scalar> Engine<'a, T> {
                 col[r].to_f64(),
                 value.to_f64(),
                 self.lambda.to_f64()
+            );
+            eprintln!(
+                "   before: {:?}",
+                self.basis
+                    .iter()
+                    .zip(self.x.iter())
+                    .map(|(v, x)| format!("{v}={:.4}", x.to_f64()))
+                    .collect::<Vec<_>>()
             );
         }
         let li = self.var_index(leaving);
@@ -878,9 +886,14 @@ pub(crate) fn start_phase<T: Scalar>(
         qa[r] = q[r] + lambda0 * d[r] + h[r];
         da[r] = -h[r] / a;
     }
+    // the covering vector acts on the rows whose slack is basic: B^{-1} (c on
+    // those rows) = c on those slacks exactly, even where free variables have
+    // taken other complementary rows
     for i in 0..n {
-        qa[p + i] += a * c(i);
-        da[p + i] -= c(i);
+        if eng.row_of(Var::W(i)).is_some() {
+            qa[p + i] += a * c(i);
+            da[p + i] -= c(i);
+        }
     }
     let ill = |m: String| StartFailure {
         status: Status::IllConditioned,
@@ -890,7 +903,13 @@ pub(crate) fn start_phase<T: Scalar>(
     match eng.trace(Some(a), None) {
         TraceEnd::Reached { driver, theta } => {
             eng.settle(driver, theta).map_err(ill)?;
+            if eng.trace_pivots {
+                eprintln!("start phase end: basis {:?} x {:?}", eng.basis, (0..dim).map(|r| eng.x[r].to_f64()).collect::<Vec<_>>());
+            }
             eng.reset_system(q.clone(), d.clone(), lambda0).map_err(ill)?;
+            if eng.trace_pivots {
+                eprintln!("after reset: x {:?}", (0..dim).map(|r| eng.x[r].to_f64()).collect::<Vec<_>>());
+            }
             Ok(())
         }
         TraceEnd::SecondaryRay { .. } | TraceEnd::UnboundedRay { .. } => Err(StartFailure {
