@@ -95,7 +95,7 @@ pub fn solve<T: Scalar>(problem: &Plcp<T>, settings: &Settings<T>) -> Result<Pat
 fn guard_residual<T: Scalar>(path: &mut Path<T>) {
     let limit = T::eps().to_f64().sqrt();
     let worst = path.info.residual.worst();
-    if path.status.is_success() && !(worst <= limit) {
+    if path.status.is_success() && (worst.is_nan() || worst > limit) {
         path.message = format!(
             "the path's largest residual {worst:.3e} (equation {:.1e}, feasibility {:.1e}, complementarity {:.1e}) exceeds sqrt(eps) = {limit:.1e} in {}: the answer cannot be trusted; try a higher precision. {}",
             path.info.residual.equation,
