@@ -14,11 +14,11 @@
 //! elements take 0.06 s, 100 take 0.9 s, 200 take 14 s (residual 2e-4) and
 //! 400 take 180 s (residual 3e-5): about n^3.7, so 1000 elements (3000
 //! unknowns) would take over an hour and are left out of the default run.
-//! Sizes above 100 are run once (`iter_custom` with a cached measurement).
+//! Every size runs at least 12 times (one check, one warm-up, ten samples).
 
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, SamplingMode};
 use frames::{Scene, SolveOptions, System};
-use std::time::{Duration, Instant};
+use std::time::Duration;
 
 fn scene(n: usize) -> Scene {
     let src = format!(
@@ -49,33 +49,17 @@ fn cantilever(c: &mut Criterion) {
         });
         let system = System::assemble(&sc.frame);
         let options = SolveOptions::default();
-        if n <= 100 {
-            let sol = frames::solve::solve(&system, &options).expect("solvable");
-            assert!(sol.status.is_success(), "{n} elements: {:?}", sol.status);
-            group.bench_with_input(BenchmarkId::new("path", n), &system, |b, s| {
-                b.iter(|| frames::solve::solve(s, &options).expect("solvable"))
-            });
-        } else {
-            let mut once: Option<Duration> = None;
-            group.bench_with_input(BenchmarkId::new("path", n), &system, |b, s| {
-                b.iter_custom(|iters| {
-                    let t = *once.get_or_insert_with(|| {
-                        let start = Instant::now();
-                        let sol = frames::solve::solve(s, &options).expect("solvable");
-                        let t = start.elapsed();
-                        eprintln!(
-                            "cantilever {n}: {:.3} s, {} pivots, status {}, residual {:.1e}",
-                            t.as_secs_f64(),
-                            sol.info.pivots,
-                            sol.status.as_str(),
-                            sol.info.residual.worst()
-                        );
-                        t
-                    });
-                    t * iters as u32
-                })
-            });
-        }
+        let sol = frames::solve::solve(&system, &options).expect("solvable");
+        eprintln!(
+            "cantilever {n}: {} pivots, status {}, residual {:.1e}",
+            sol.info.pivots,
+            sol.status.as_str(),
+            sol.info.residual.worst()
+        );
+        assert!(sol.status.is_success(), "{n} elements: {:?}", sol.status);
+        group.bench_with_input(BenchmarkId::new("path", n), &system, |b, s| {
+            b.iter(|| frames::solve::solve(s, &options).expect("solvable"))
+        });
     }
     group.finish();
 }

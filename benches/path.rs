@@ -3,8 +3,8 @@
 //! point) in the same run as the peer.
 //!
 //! ```sh
-//! cargo bench --bench path                      # n = 50 ... 2000
-//! PLCP_BENCH_MAX_N=500 cargo bench --bench path # stop at n = 500
+//! cargo bench --bench path                       # n = 50 ... 1000
+//! PLCP_BENCH_MAX_N=2000 cargo bench --bench path # n = 2000 too (long)
 //! PLCP_BENCH_FULL=1 cargo bench --bench path    # every variant at every n
 //! ```
 //!
@@ -25,22 +25,22 @@
 //!   `min 1/2 z'Mz + (q + L d)'z, z >= 0` at `L_max` alone, and at K = 10 and
 //!   100 evenly spaced values of `L` (the path approximated by re-solving;
 //!   one solver object, `update_q` between solves). K = 100 for n <= 200 and
-//!   K = 10 for n <= 1000 unless `PLCP_BENCH_FULL=1`.
+//!   K = 10 for n <= 500 unless `PLCP_BENCH_FULL=1`.
 //!
-//! Sample sizes are criterion's minimum (10), flat sampling, short measurement
-//! times. Every variant is run once first; if that run takes more than half a
-//! second (n >= 500 for Clarabel, n >= 1000 for plcp) it is not repeated and
-//! that one time is reported for every sample (`iter_custom` with a cached
-//! measurement): criterion's statistics are then meaningless, the figure is a
-//! single wall-clock run. f32 paths that stop early (`IllConditioned`, which
-//! happens from n = 200 on) are reported on stderr and not timed.
+//! Sample sizes are criterion's minimum (10), flat sampling (each sample one
+//! iteration when a run is long), short warm-up and measurement times: every
+//! variant runs at least 11 times, so n = 1000 takes about a minute and
+//! n = 2000 (opt-in, `PLCP_BENCH_MAX_N=2000`) about ten; `speed_report`
+//! measures n = 2000 more cheaply (best of few runs). f32 paths that stop
+//! early (`IllConditioned`, which happens from n = 200 on) are reported on
+//! stderr and not timed.
 
 use criterion::{
     criterion_group, criterion_main, BenchmarkGroup, BenchmarkId, Criterion, SamplingMode,
 };
 use plcp::{BasisKind, Method, Plcp, Scalar, Settings};
 use plcp_workspace::random::path_instance;
-use std::time::{Duration, Instant};
+use std::time::Duration;
 
 #[path = "../examples/common/speed/peer.rs"]
 mod peer;
@@ -49,7 +49,7 @@ fn sizes() -> Vec<usize> {
     let max_n = std::env::var("PLCP_BENCH_MAX_N")
         .ok()
         .and_then(|s| s.parse().ok())
-        .unwrap_or(2000usize);
+        .unwrap_or(1000usize);
     [50usize, 200, 500, 1000, 2000]
         .into_iter()
         .filter(|&n| n <= max_n)
@@ -63,24 +63,14 @@ fn full() -> bool {
 /// For n at or above this size only f64 runs by default (see the module doc).
 const LARGE_N: usize = 1000;
 
-/// A single run longer than this is not repeated (see the module doc).
-const ONE_SHOT_SECONDS: f64 = 0.5;
-
-/// Times `f`: criterion's sampling if one run is short, else that one run,
-/// cached and reported for every sample.
+/// Times `f` with criterion (flat sampling: at least one warm-up run and ten
+/// timed runs).
 fn bench<M: criterion::measurement::Measurement<Value = Duration>>(
     group: &mut BenchmarkGroup<'_, M>,
     id: BenchmarkId,
     mut f: impl FnMut(),
 ) {
-    let start = Instant::now();
-    f();
-    let once = start.elapsed();
-    if once.as_secs_f64() < ONE_SHOT_SECONDS {
-        group.bench_function(id, |b| b.iter(&mut f));
-    } else {
-        group.bench_function(id, |b| b.iter_custom(|iters| once * iters as u32));
-    }
+    group.bench_function(id, |b| b.iter(&mut f));
 }
 
 fn variant<T: Scalar>(
@@ -170,7 +160,7 @@ fn clarabel(c: &mut Criterion) {
         for (name, k) in [("lmax", 1usize), ("k10", 10), ("k100", 100)] {
             let affordable = match k {
                 1 => true,
-                10 => n <= 1000,
+                10 => n <= 500,
                 _ => n <= 200,
             };
             if !affordable && !full() {
