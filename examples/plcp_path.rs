@@ -44,8 +44,13 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
                 s.lambda_from,
                 s.lambda_to,
                 basis.join(","),
-                s.z0().iter().map(|v: &f64| (v * 1e6).round() / 1e6).collect::<Vec<_>>(),
-                s.dz.iter().map(|v: &f64| (v * 1e6).round() / 1e6).collect::<Vec<_>>()
+                s.z0()
+                    .iter()
+                    .map(|v: &f64| (v * 1e6).round() / 1e6)
+                    .collect::<Vec<_>>(),
+                s.dz.iter()
+                    .map(|v: &f64| (v * 1e6).round() / 1e6)
+                    .collect::<Vec<_>>()
             );
         }
     }

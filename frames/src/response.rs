@@ -73,7 +73,8 @@ pub struct Response {
 fn to_nodes(frame: &Frame, system: &System, q: &[f64]) -> Vec<[f64; 3]> {
     let mut out = vec![[0.0; 3]; frame.nodes.len()];
     for (j, c) in system.coordinates.iter().enumerate() {
-        out[c.node][c.component.index()] = q[j];
+        // a path that stopped early may carry fewer values than coordinates
+        out[c.node][c.component.index()] = q.get(j).copied().unwrap_or(0.0);
     }
     out
 }

@@ -47,12 +47,20 @@ pub(crate) fn solve<T: Scalar>(
         for seg in &mut path.segments {
             seg.u_from = red.recover_u(&seg.z_from, seg.lambda_from);
             seg.du = red.recover_du(&seg.dz);
+            polish_segment(problem, seg);
             res = res.max(residual(problem, &seg.eval(seg.lambda_from)));
             if !seg.unbounded {
                 res = res.max(residual(problem, &seg.eval(seg.lambda_to)));
             }
         }
         path.end.u = red.recover_u(&path.end.z, path.end.lambda);
+        // the end point lies on the last (polished) segment
+        if let Some(seg) = path.segments.last() {
+            let l = path.end.lambda;
+            if l.is_finite() && (seg.contains(l) || l == seg.lambda_to) {
+                path.end = seg.eval(l);
+            }
+        }
         if path.end.lambda.is_finite() {
             res = res.max(residual(problem, &path.end));
         }
@@ -70,6 +78,78 @@ pub(crate) fn solve<T: Scalar>(
         return Ok(path);
     }
     Ok(solve_standard(problem, settings, "lemke"))
+}
+
+/// Recomputes a segment of the reduced path on the unreduced system: with the
+/// segment's active set `J` (basic `z`), solve the square system of the equality
+/// rows and the rows `J` for `(u, z_J)` at `lambda_from` and for the slope, then
+/// `w` from its rows. This removes the loss of accuracy of the Schur complement
+/// (about `eps cond(F)`); if the square system is singular the segment is kept.
+fn polish_segment<T: Scalar>(problem: &Plcp<T>, seg: &mut crate::path::Segment<T>) {
+    let p = problem.free();
+    let n = problem.n();
+    let m = problem.m();
+    let active: Vec<usize> = (0..n)
+        .filter(|&i| seg.basis.get(i) == Some(&Var::Z(i)))
+        .collect();
+    let rows: Vec<usize> = (0..p).chain(active.iter().map(|&i| p + i)).collect();
+    let k = rows.len();
+    let a = faer::Mat::from_fn(k, k, |r, c| m[(rows[r], rows[c])]);
+    let l0 = seg.lambda_from;
+    let rhs = faer::Mat::from_fn(k, 2, |r, c| {
+        let i = rows[r];
+        if c == 0 {
+            -(problem.q()[i] + l0 * problem.d()[i])
+        } else {
+            -problem.d()[i]
+        }
+    });
+    let Some((inv, umax, umin)) = crate::linalg::inverse(a.as_ref()) else {
+        return;
+    };
+    if umin <= umax * T::eps().to_f64() * (k.max(1) as f64) * 1e3 {
+        return;
+    }
+    let mut sol = crate::linalg::matmul(inv.as_ref(), rhs.as_ref());
+    // one step of iterative refinement
+    let ax = crate::linalg::matmul(a.as_ref(), sol.as_ref());
+    let r = faer::Mat::from_fn(k, 2, |i, j| rhs[(i, j)] - ax[(i, j)]);
+    let corr = crate::linalg::matmul(inv.as_ref(), r.as_ref());
+    for i in 0..k {
+        for j in 0..2 {
+            sol[(i, j)] += corr[(i, j)];
+        }
+    }
+    let mut x0 = Col::<T>::zeros(p + n);
+    let mut dx = Col::<T>::zeros(p + n);
+    for (r, &i) in rows.iter().enumerate() {
+        x0[i] = sol[(r, 0)];
+        dx[i] = sol[(r, 1)];
+    }
+    for j in 0..p {
+        seg.u_from[j] = x0[j];
+        seg.du[j] = dx[j];
+    }
+    for i in 0..n {
+        seg.z_from[i] = x0[p + i];
+        seg.dz[i] = dx[p + i];
+    }
+    for i in 0..n {
+        let row = p + i;
+        if active.contains(&i) {
+            seg.w_from[i] = T::zero();
+            seg.dw[i] = T::zero();
+            continue;
+        }
+        let mut w0 = problem.q()[row] + l0 * problem.d()[row];
+        let mut dw = problem.d()[row];
+        for c in 0..p + n {
+            w0 += m[(row, c)] * x0[c];
+            dw += m[(row, c)] * dx[c];
+        }
+        seg.w_from[i] = w0;
+        seg.dw[i] = dw;
+    }
 }
 
 fn solve_standard<T: Scalar>(

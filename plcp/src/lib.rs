@@ -105,6 +105,17 @@ fn guard_residual<T: Scalar>(path: &mut Path<T>) {
             path.message
         );
         path.status = Status::IllConditioned;
+        // nothing beyond the last finite point is claimed any more
+        if let Some(seg) = path.segments.last_mut() {
+            if seg.unbounded {
+                seg.unbounded = false;
+                seg.lambda_to = seg.lambda_from;
+            }
+        }
+        if !path.lambda_reached.is_finite() {
+            path.lambda_reached = path.end.lambda;
+        }
+        path.ray = None;
     }
 }
 
@@ -122,13 +133,17 @@ fn solve_unchecked<T: Scalar>(
             cols: vec![1.0; problem.dim()],
         }
     };
-    if eq.is_identity() {
+    let scaled = if eq.is_identity() {
+        None
+    } else {
+        eq.scale(problem)
+    };
+    let Some(scaled) = scaled else {
         return match settings.method {
             Method::Lemke => lemke::solve(problem, settings),
             Method::Wolfe => wolfe::solve(problem, settings),
         };
-    }
-    let scaled = eq.scale(problem);
+    };
     // the covering vector acts on the rows of w: scale it with them, so the start
     // phase follows the same path as on the unscaled problem
     let (p, n) = (problem.free(), problem.n());

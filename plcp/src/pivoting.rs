@@ -361,12 +361,16 @@ impl<'a, T: Scalar> Engine<'a, T> {
                 let vmin = vals.iter().fold(vals[0], |a, &b| a.min(b));
                 let vscale = vals.iter().fold(T::zero(), |a, &b| a.max(b.abs()));
                 let tol = self.tie_tol * vscale;
-                tied = tied
+                let kept: Vec<usize> = tied
                     .iter()
                     .zip(vals.iter())
                     .filter(|(_, &v)| v - vmin <= tol)
                     .map(|(&r, _)| r)
                     .collect();
+                // non-finite entries compare false everywhere: keep the set then
+                if !kept.is_empty() {
+                    tied = kept;
+                }
             }
             // still tied (numerically): the largest pivot is the most stable
             tied.sort_by(|&a, &b| {
@@ -375,7 +379,7 @@ impl<'a, T: Scalar> Engine<'a, T> {
                     .unwrap_or(core::cmp::Ordering::Equal)
             });
         }
-        let r = tied[0];
+        let r = *tied.first().unwrap_or(&cands[0].0);
         let theta = self.x[r].max(T::zero()) / col[r];
         Some((r, theta))
     }
@@ -480,6 +484,13 @@ impl<'a, T: Scalar> Engine<'a, T> {
             let rate_tol = self.noise * colmax.max(T::one());
             let rising = rate > rate_tol;
             let moving = rate.abs() > rate_tol;
+            if !(0..self.dim).all(|i| col[i].is_finite() && self.x[i].is_finite()) {
+                return TraceEnd::IllConditioned(format!(
+                    "non-finite values at L = {:e} (overflow in the working precision {})",
+                    self.lambda.to_f64(),
+                    T::NAME
+                ));
+            }
             let block = self.ratio_test(&col);
             if let (true, Some(end)) = (rising, lambda_end) {
                 let theta_end = (end - self.lambda) / rate;

@@ -30,23 +30,40 @@ pub fn residual_parts<T: Scalar>(
         .map(|j| point.u[j].to_f64())
         .chain((0..n).map(|i| point.z[i].to_f64()))
         .collect();
+    // column-major sweep over the nonzero entries of x (contiguous columns)
+    let dim = p + n;
+    let mut acc: Vec<T> = (0..dim).map(|r| q[r] + point.lambda * d[r]).collect();
+    let mut scale: Vec<f64> = (0..dim)
+        .map(|r| {
+            1.0f64
+                .max(q[r].to_f64().abs())
+                .max((l * d[r].to_f64()).abs())
+        })
+        .collect();
+    for j in 0..dim {
+        let xj = if j < p { point.u[j] } else { point.z[j - p] };
+        if xj == T::zero() {
+            continue;
+        }
+        let xf = x[j].abs();
+        let col = m.col(j);
+        for r in 0..dim {
+            let a = col[r];
+            acc[r] += a * xj;
+            let t = a.to_f64().abs() * xf;
+            if t > scale[r] {
+                scale[r] = t;
+            }
+        }
+    }
     let mut eq = 0.0f64;
-    for r in 0..p + n {
-        // sum in the working precision, scale in f64
-        let mut acc = q[r] + point.lambda * d[r];
-        let mut scale = 1.0f64
-            .max(q[r].to_f64().abs())
-            .max((l * d[r].to_f64()).abs());
-        for j in 0..p + n {
-            let xj = if j < p { point.u[j] } else { point.z[j - p] };
-            acc += m[(r, j)] * xj;
-            scale = scale.max((m[(r, j)].to_f64() * x[j]).abs());
-        }
+    for r in 0..dim {
+        let mut v = acc[r];
         if r >= p {
-            acc -= point.w[r - p];
-            scale = scale.max(point.w[r - p].to_f64().abs());
+            v -= point.w[r - p];
+            scale[r] = scale[r].max(point.w[r - p].to_f64().abs());
         }
-        eq = eq.max(acc.to_f64().abs() / scale);
+        eq = eq.max(v.to_f64().abs() / scale[r]);
     }
     let sz = (0..n).fold(1.0f64, |a, i| a.max(point.z[i].to_f64().abs()));
     let sw = (0..n).fold(1.0f64, |a, i| a.max(point.w[i].to_f64().abs()));

@@ -72,17 +72,18 @@ impl Equilibration {
         self.rows.iter().chain(self.cols.iter()).all(|&s| s == 1.0)
     }
 
-    /// The scaled problem `R M C`, `R q`, `R d`.
-    pub fn scale<T: Scalar>(&self, problem: &Plcp<T>) -> Plcp<T> {
+    /// The scaled problem `R M C`, `R q`, `R d`, or `None` if it overflows.
+    pub fn scale<T: Scalar>(&self, problem: &Plcp<T>) -> Option<Plcp<T>> {
         let dim = problem.dim();
         let r: Vec<T> = self.rows.iter().map(|&v| T::from_f64(v)).collect();
         let c: Vec<T> = self.cols.iter().map(|&v| T::from_f64(v)).collect();
         let m = Mat::from_fn(dim, dim, |i, j| r[i] * problem.m()[(i, j)] * c[j]);
         let q = Col::from_fn(dim, |i| r[i] * problem.q()[i]);
         let d = Col::from_fn(dim, |i| r[i] * problem.d()[i]);
+        // `None` when the scaled data leave the range of the type (overflow)
         Plcp::mixed(m.as_ref(), q.as_ref(), d.as_ref(), problem.free())
             .and_then(|pr| pr.with_range(problem.lambda0(), problem.lambda_max()))
-            .expect("scaling by powers of two keeps a valid problem valid")
+            .ok()
     }
 
     /// Maps a path of the scaled problem back to the original one and measures its

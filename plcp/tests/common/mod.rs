@@ -582,6 +582,18 @@ pub struct Tol {
     pub lambda: f64,
 }
 
+impl Tol {
+    /// Every tolerance multiplied by `k`.
+    pub fn scaled(self, k: f64) -> Tol {
+        Tol {
+            residual: self.residual * k,
+            forward: self.forward * k,
+            enum_feas: self.enum_feas * k,
+            lambda: self.lambda * k,
+        }
+    }
+}
+
 /// The largest 2-norm condition number (f64 SVD) of the basis matrices of the
 /// path's segments, in the unreduced system: columns `e_(p+i)` for `w_i`,
 /// `M[:, p+i]` for `z_i`, `M[:, j]` for `u_j`, `e_k` for the artificial variable
