@@ -242,11 +242,7 @@ pub fn solve_lcp<T: Scalar>(
             w[i] += lcp.m[(i, j)] * point.z[j];
         }
     }
-    let pt = Point {
-        w: point.w.clone(),
-        ..point.clone()
-    };
-    info.residual = residual(&problem, &pt);
+    info.residual = residual(&problem, &point);
     info.solve_seconds = timer.elapsed().as_secs_f64();
     Ok(LcpSolution {
         status,

@@ -286,7 +286,6 @@ impl<'a, T: Scalar> Engine<'a, T> {
         b
     }
 
-    #[allow(clippy::too_many_arguments)]
     fn record_segment(
         &self,
         rec: &mut Recorder<T>,
@@ -295,9 +294,9 @@ impl<'a, T: Scalar> Engine<'a, T> {
         rate: T,
         lambda_to: T,
         unbounded: bool,
-        theta0: T,
     ) {
-        let start = self.point(Some((driver, theta0)));
+        // a segment starts with the driver at zero
+        let start = self.point(Some((driver, T::zero())));
         let (dz, dw, du) = self.slopes(driver, col, rate);
         rec.segments.push(Segment {
             lambda_from: self.lambda,
@@ -499,7 +498,7 @@ impl<'a, T: Scalar> Engine<'a, T> {
                     if let Some(rec) = rec.as_deref_mut() {
                         if theta_end > T::zero() {
                             self.note_direction(rec, 1);
-                            self.record_segment(rec, driver, &col, rate, end, false, T::zero());
+                            self.record_segment(rec, driver, &col, rate, end, false);
                         }
                     }
                     for r in 0..self.dim {
@@ -527,7 +526,6 @@ impl<'a, T: Scalar> Engine<'a, T> {
                             rate,
                             crate::scalar::infinity(),
                             true,
-                            T::zero(),
                         );
                     }
                     return TraceEnd::UnboundedRay { driver, col, rate };
@@ -549,7 +547,7 @@ impl<'a, T: Scalar> Engine<'a, T> {
                 if moving && theta > T::zero() {
                     let sign = if rate > T::zero() { 1 } else { -1 };
                     self.note_direction(rec, sign);
-                    self.record_segment(rec, driver, &col, rate, lambda_to, false, T::zero());
+                    self.record_segment(rec, driver, &col, rate, lambda_to, false);
                 }
             }
             for i in 0..self.dim {

@@ -21,8 +21,3 @@ use crate::scalar::Scalar;
 pub fn rank_tol<T: Scalar>(dim: usize, largest_pivot: T) -> T {
     T::from_f64(100.0 * (dim.max(1) as f64)) * T::eps() * largest_pivot
 }
-
-/// `k * eps` in the working precision.
-pub fn eps_times<T: Scalar>(k: f64) -> T {
-    T::from_f64(k) * T::eps()
-}
