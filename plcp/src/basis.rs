@@ -22,7 +22,7 @@
 //!   `O(k^2 + (p+n) k)`. For a PLCP whose active set stays small this is far
 //!   cheaper than the dense inverse. This is the default.
 
-use crate::linalg::matvec;
+use crate::linalg::{matmul_seq, matvec};
 use crate::path::Var;
 use crate::scalar::Scalar;
 use faer::{Col, Mat, MatRef};
@@ -53,6 +53,38 @@ pub(crate) fn var_column<T: Scalar>(m: MatRef<'_, T>, d: &Col<T>, p: usize, v: V
     a
 }
 
+/// `B x = sum_r x_r a_{basis[r]}`, by system row.
+pub(crate) fn apply<T: Scalar>(
+    m: MatRef<'_, T>,
+    d: &Col<T>,
+    p: usize,
+    basis: &[Var],
+    x: &Col<T>,
+) -> Col<T> {
+    let dim = m.nrows();
+    let mut y = Col::<T>::zeros(dim);
+    let axpy = |y: &mut Col<T>, col: faer::ColRef<'_, T>, f: T| {
+        for i in 0..dim {
+            let v = y[i] - col[i] * f;
+            y[i] = v;
+        }
+    };
+    for (r, v) in basis.iter().enumerate() {
+        let xr = x[r];
+        if xr == T::zero() {
+            continue;
+        }
+        match *v {
+            Var::U(j) => axpy(&mut y, m.col(j), xr),
+            Var::Z(j) => axpy(&mut y, m.col(p + j), xr),
+            Var::Lambda => axpy(&mut y, d.as_ref(), xr),
+            Var::W(i) => y[p + i] += xr,
+            Var::Artificial(k) => y[k] += xr,
+        }
+    }
+    y
+}
+
 /// The row an identity-column variable covers, or `None` for a matrix column.
 fn identity_row(p: usize, v: Var) -> Option<usize> {
     match v {
@@ -72,6 +104,22 @@ pub(crate) trait BasisFactor<T: Scalar> {
     /// `B^{-1} a_v`.
     fn column(&self, m: MatRef<'_, T>, d: &Col<T>, p: usize, v: Var) -> Col<T> {
         self.solve(&var_column(m, d, p, v))
+    }
+    /// `B^{-1} a` and `B x` together (`x` indexed by basis position, `B x` by
+    /// system row). Representations that keep the basic columns override it and
+    /// stream them once for both products (the residual at a breakpoint then
+    /// costs no extra pass over the matrix).
+    #[allow(clippy::too_many_arguments)]
+    fn solve_and_apply(
+        &self,
+        m: MatRef<'_, T>,
+        d: &Col<T>,
+        p: usize,
+        basis: &[Var],
+        a: &Col<T>,
+        x: &Col<T>,
+    ) -> (Col<T>, Col<T>) {
+        (self.solve(a), apply(m, d, p, basis, x))
     }
     /// `B^{-1} e_k`.
     fn unit(&self, k: usize) -> Col<T>;
@@ -119,6 +167,21 @@ fn invert<T: Scalar>(b: MatRef<'_, T>) -> Option<(Mat<T>, f64)> {
     Some((inv, cond))
 }
 
+/// `m[0..k, col] += u[0..k] * f`, over a contiguous column (vectorises).
+#[inline]
+fn col_axpy<T: Scalar>(m: &mut Mat<T>, col: usize, u: &[T], f: T) {
+    let k = u.len();
+    let dst = m
+        .col_mut(col)
+        .subrows_mut(0, k)
+        .try_as_col_major_mut()
+        .expect("an owned matrix is column-major")
+        .as_slice_mut();
+    for (d, &x) in dst.iter_mut().zip(u) {
+        *d += x * f;
+    }
+}
+
 /// Product-form update of an explicit inverse `inv` (top-left `k x k`) when
 /// column `r` of the matrix is replaced and `y = inv * a_new`.
 fn product_form_update<T: Scalar>(inv: &mut Mat<T>, k: usize, r: usize, y: &[T]) {
@@ -126,13 +189,7 @@ fn product_form_update<T: Scalar>(inv: &mut Mat<T>, k: usize, r: usize, y: &[T])
     for j in 0..k {
         let f = inv[(r, j)] / piv;
         if f != T::zero() {
-            let col = inv.col_mut(j);
-            let col = col.subrows_mut(0, k);
-            for (i, c) in col.iter_mut().enumerate() {
-                if i != r {
-                    *c -= y[i] * f;
-                }
-            }
+            col_axpy(inv, j, &y[..k], -f);
         }
         inv[(r, j)] = f;
     }
@@ -339,6 +396,34 @@ impl<T: Scalar> BasisFactor<T> for BlockInverse<T> {
         self.solve(&e)
     }
 
+    fn solve_and_apply(
+        &self,
+        _m: MatRef<'_, T>,
+        _d: &Col<T>,
+        _p: usize,
+        _basis: &[Var],
+        a: &Col<T>,
+        x: &Col<T>,
+    ) -> (Col<T>, Col<T>) {
+        // one pass over the basic columns G for both G S^{-1} a_R and G x_M
+        let k = self.k;
+        let ar = Col::from_fn(k, |j| a[self.rows[j]]);
+        let ym = matvec(self.sinv.as_ref().submatrix(0, 0, k, k), ar.as_ref());
+        let rhs = Mat::from_fn(k, 2, |b, c| if c == 0 { ym[b] } else { x[self.bpos[b]] });
+        let prod = matmul_seq(self.g.as_ref().subcols(0, k), rhs.as_ref());
+        let mut bx = Col::from_fn(self.dim, |i| prod[(i, 1)]);
+        let sol = Col::from_fn(self.dim, |r| match self.slots[r] {
+            Slot::Matrix(b) => ym[b],
+            Slot::Identity(i) => a[i] - prod[(i, 0)],
+        });
+        for (r, slot) in self.slots.iter().enumerate() {
+            if let Slot::Identity(i) = slot {
+                bx[*i] += x[r];
+            }
+        }
+        (sol, bx)
+    }
+
     fn solve_transpose(&self, c: &Col<T>) -> Col<T> {
         // B' = [[S', C'], [0, I]]: pi_I = c_I, then S' pi_R = c_M - C' pi_I
         let k = self.k;
@@ -404,10 +489,7 @@ impl<T: Scalar> BasisFactor<T> for BlockInverse<T> {
                 for col in 0..k {
                     let f = if col == a { g[col] - T::one() } else { g[col] } / ga;
                     if f != T::zero() {
-                        for (b, ub) in u.iter().enumerate() {
-                            let v = self.sinv[(b, col)] - *ub * f;
-                            self.sinv[(b, col)] = v;
-                        }
+                        col_axpy(&mut self.sinv, col, &u, -f);
                     }
                 }
                 self.rows[a] = i_out;
@@ -422,10 +504,7 @@ impl<T: Scalar> BasisFactor<T> for BlockInverse<T> {
                 for col in 0..k {
                     let f = g[col] / sigma;
                     if f != T::zero() {
-                        for (b, yb) in ym.iter().enumerate() {
-                            let v = self.sinv[(b, col)] + *yb * f;
-                            self.sinv[(b, col)] = v;
-                        }
+                        col_axpy(&mut self.sinv, col, &ym, f);
                     }
                 }
                 for (b, yb) in ym.iter().enumerate() {
@@ -452,16 +531,13 @@ impl<T: Scalar> BasisFactor<T> for BlockInverse<T> {
                 };
                 let piv = self.sinv[(b, a)];
                 let rowb: Vec<T> = (0..k).map(|c| self.sinv[(b, c)] / piv).collect();
+                let cola: Vec<T> = (0..k).map(|bb| self.sinv[(bb, a)]).collect();
                 for col in 0..k {
                     if col == a || rowb[col] == T::zero() {
                         continue;
                     }
-                    for bb in 0..k {
-                        if bb != b {
-                            let v = self.sinv[(bb, col)] - self.sinv[(bb, a)] * rowb[col];
-                            self.sinv[(bb, col)] = v;
-                        }
-                    }
+                    // row b goes too (zeroed here, then replaced or dropped below)
+                    col_axpy(&mut self.sinv, col, &cola, -rowb[col]);
                 }
                 let last = k - 1;
                 // move block column `last` into `b` (row of sinv, column of g)
@@ -567,6 +643,27 @@ mod tests {
                 assert!(
                     (a[i] - b[i]).abs() < 1e-8 * (1.0 + b[i].abs()),
                     "transpose solve differs"
+                );
+            }
+            // the fused solve and product against the plain ones
+            let x = Col::<f64>::from_fn(dim, |i| (i as f64 * 0.37 + done as f64).sin());
+            let a = var_column(m.as_ref(), &d, p, all[(k + 3) % all.len()]);
+            let (sa, bx) = block.solve_and_apply(m.as_ref(), &d, p, &basis, &a, &x);
+            let (sb, by) = fresh.solve_and_apply(m.as_ref(), &d, p, &basis, &a, &x);
+            // B (B^-1 a) = a checks the product independently of both inverses
+            let back = apply(m.as_ref(), &d, p, &basis, &sa);
+            for i in 0..dim {
+                assert!(
+                    (sa[i] - sb[i]).abs() < 1e-8 * (1.0 + sb[i].abs()),
+                    "fused solve differs"
+                );
+                assert!(
+                    (bx[i] - by[i]).abs() < 1e-12 * (1.0 + by[i].abs()),
+                    "fused product differs"
+                );
+                assert!(
+                    (back[i] - a[i]).abs() < 1e-8 * (1.0 + a[i].abs()),
+                    "B B^-1 a != a"
                 );
             }
             done += 1;

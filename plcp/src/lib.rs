@@ -119,6 +119,14 @@ fn guard_residual<T: Scalar>(path: &mut Path<T>) {
     }
 }
 
+fn measure<T: Scalar>(problem: &Plcp<T>, path: &mut Path<T>, whole: bool) {
+    if whole {
+        residual::measure_path(problem, path, true);
+    } else {
+        residual::measure_ends(problem, path);
+    }
+}
+
 fn solve_unchecked<T: Scalar>(
     problem: &Plcp<T>,
     settings: &Settings<T>,
@@ -138,11 +146,17 @@ fn solve_unchecked<T: Scalar>(
     } else {
         eq.scale(problem)
     };
+    // segments of Lemke on the Schur reduction are re-solved one by one on the
+    // unreduced system: measure both ends of each
+    let both_ends = settings.method == Method::Lemke && problem.free() > 0;
     let Some(scaled) = scaled else {
-        return match settings.method {
-            Method::Lemke => lemke::solve(problem, settings),
-            Method::Wolfe => wolfe::solve(problem, settings),
+        let mut path = match settings.method {
+            Method::Lemke => lemke::solve(problem, settings)?,
+            Method::Wolfe => wolfe::solve(problem, settings)?,
         };
+        measure(problem, &mut path, both_ends);
+        path.info.solve_seconds = timer.elapsed().as_secs_f64();
+        return Ok(path);
     };
     // the covering vector acts on the rows of w: scale it with them, so the start
     // phase follows the same path as on the unscaled problem
@@ -157,6 +171,7 @@ fn solve_unchecked<T: Scalar>(
         Method::Wolfe => wolfe::solve(&scaled, &scaled_settings)?,
     };
     eq.unscale(problem, &mut path);
+    measure(problem, &mut path, both_ends);
     path.info.solve_seconds = timer.elapsed().as_secs_f64();
     Ok(path)
 }

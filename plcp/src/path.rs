@@ -96,6 +96,16 @@ pub struct Breakpoint<T: Scalar> {
     pub degenerate: bool,
     /// From here on `L` decreases along the path (a turning point).
     pub turning: bool,
+    /// The number of segments before this breakpoint: it lies at the end of
+    /// `segments[segment - 1]` (or at the path's start when `segment == 0`), and
+    /// `segments[segment]`, if any, is the next piece.
+    pub segment: usize,
+    /// The residuals at this breakpoint: of the basic solution as the trace
+    /// measured it (on the scaled system; power-of-two scaling keeps relative
+    /// residuals), or, for Lemke on a Schur reduction, of the path's point on the
+    /// original problem. [`crate::residual::measure_path`] re-measures a whole
+    /// path on the original problem.
+    pub residual: Residual,
 }
 
 /// One piece of the path: every variable is affine in `L` on it.

@@ -14,9 +14,8 @@
 //! variables (dependent equality rows, Wolfe long form) are fixed at zero: they
 //! block any step that would move them and, once out, never return.
 
-use crate::basis::{var_column, BasisFactor, BlockInverse, DenseInverse};
+use crate::basis::{apply, var_column, BasisFactor, BlockInverse, DenseInverse};
 use crate::path::{Breakpoint, Point, Residual, Segment, Var};
-use crate::residual::residual_parts;
 use crate::scalar::Scalar;
 use crate::settings::Settings;
 use faer::{Col, MatRef};
@@ -41,7 +40,6 @@ pub(crate) enum TraceEnd<T: Scalar> {
 pub(crate) struct Recorder<T: Scalar> {
     pub segments: Vec<Segment<T>>,
     pub breakpoints: Vec<Breakpoint<T>>,
-    pub residual: Residual,
     pub turning_points: usize,
     last_sign: i8,
 }
@@ -51,7 +49,6 @@ impl<T: Scalar> Recorder<T> {
         Self {
             segments: Vec::new(),
             breakpoints: Vec::new(),
-            residual: Residual::default(),
             turning_points: 0,
             last_sign: 0,
         }
@@ -86,6 +83,9 @@ pub(crate) struct Engine<'a, T: Scalar> {
     /// `[1, 1e6]`): entries of `B^{-1} a` below `noise * max|B^{-1} a|` are rounding.
     noise: T,
     tie_tol: T,
+    /// The last recorded breakpoint still owes its residual (measured with the
+    /// next entering column, in the same pass over the basic columns).
+    residual_owed: bool,
 }
 
 fn is_comp(v: Var) -> bool {
@@ -142,6 +142,7 @@ impl<'a, T: Scalar> Engine<'a, T> {
             noise: T::from_f64(settings.pivot_tol_eps) * T::eps(),
             trace_pivots: std::env::var_os("PLCP_TRACE").is_some(),
             tie_tol: T::from_f64(settings.tie_tol_eps) * T::eps(),
+            residual_owed: false,
         };
         for (r, v) in basis.iter().enumerate() {
             let k = e.var_index(*v);
@@ -463,6 +464,72 @@ impl<'a, T: Scalar> Engine<'a, T> {
         lambda_end: Option<T>,
         mut rec: Option<&mut Recorder<T>>,
     ) -> TraceEnd<T> {
+        let end = self.trace_steps(lambda_end, rec.as_deref_mut());
+        if self.residual_owed {
+            // only a pivot limit ends the trace between a breakpoint and the next
+            // column: the values are still those of the breakpoint
+            self.residual_owed = false;
+            let bx = apply(self.m, &self.d, self.p, &self.basis, &self.x);
+            let res = self.residual_of(&bx);
+            if let Some(b) = rec.and_then(|r| r.breakpoints.last_mut()) {
+                b.residual = res;
+            }
+        }
+        end
+    }
+
+    /// The residuals of the basic solution from `B x` (see [`Residual`]): the
+    /// equation `sum_v a_v v = q` relative to `max(1, |q_r|, |L d_r|, |(B x)_r|)`
+    /// per row, which is at least the componentwise (Oettli-Prager) backward
+    /// error up to the floor of 1; feasibility and complementarity of the basic
+    /// `z`, `w`.
+    fn residual_of(&self, bx: &Col<T>) -> Residual {
+        let lambda_nonbasic = self.row_of(Var::Lambda).is_none();
+        let mut eq = 0.0f64;
+        for i in 0..self.dim {
+            let ld = self.lambda * self.d[i];
+            let rhs = if lambda_nonbasic {
+                self.q[i] + ld
+            } else {
+                self.q[i]
+            };
+            let r = (rhs - bx[i]).abs();
+            let s = T::one().max(self.q[i].abs()).max(ld.abs()).max(bx[i].abs());
+            eq = eq.max((r / s).to_f64());
+        }
+        let (mut sz, mut sw) = (1.0f64, 1.0f64);
+        let mut zv = vec![0.0f64; self.n];
+        let mut wv = vec![0.0f64; self.n];
+        for (r, v) in self.basis.iter().enumerate() {
+            match *v {
+                Var::Z(i) => {
+                    zv[i] = self.x[r].to_f64();
+                    sz = sz.max(zv[i].abs());
+                }
+                Var::W(i) => {
+                    wv[i] = self.x[r].to_f64();
+                    sw = sw.max(wv[i].abs());
+                }
+                _ => {}
+            }
+        }
+        let (mut feas, mut comp) = (0.0f64, 0.0f64);
+        for i in 0..self.n {
+            feas = feas.max(-zv[i] / sz).max(-wv[i] / sw);
+            comp = comp.max((zv[i] * wv[i]).abs() / (sz * sw));
+        }
+        Residual {
+            equation: eq,
+            feasibility: feas.max(0.0),
+            complementarity: comp,
+        }
+    }
+
+    fn trace_steps(
+        &mut self,
+        lambda_end: Option<T>,
+        mut rec: Option<&mut Recorder<T>>,
+    ) -> TraceEnd<T> {
         let mut driver = Var::Lambda;
         if self.row_of(Var::Lambda).is_some() {
             return TraceEnd::Stalled("internal: trace must start with L nonbasic".into());
@@ -471,7 +538,26 @@ impl<'a, T: Scalar> Engine<'a, T> {
             if self.pivots >= self.max_pivots {
                 return TraceEnd::PivotLimit;
             }
-            let col = self.column(driver);
+            let col = match rec.as_deref_mut() {
+                Some(rec) if self.residual_owed => {
+                    let a = var_column(self.m, &self.d, self.p, driver);
+                    let (col, bx) = self.factor.solve_and_apply(
+                        self.m,
+                        &self.d,
+                        self.p,
+                        &self.basis,
+                        &a,
+                        &self.x,
+                    );
+                    let res = self.residual_of(&bx);
+                    if let Some(b) = rec.breakpoints.last_mut() {
+                        b.residual = res;
+                    }
+                    self.residual_owed = false;
+                    col
+                }
+                _ => self.column(driver),
+            };
             let colmax = (0..self.dim).fold(T::zero(), |a, i| a.max(col[i].abs()));
             let rate = match driver {
                 Var::Lambda => T::one(),
@@ -582,10 +668,10 @@ impl<'a, T: Scalar> Engine<'a, T> {
                             leaving,
                             degenerate,
                             turning: false,
+                            segment: rec.segments.len(),
+                            residual: Residual::default(),
                         });
-                        let pt = self.point(None);
-                        let res = residual_parts(self.m, self.q.as_ref(), self.d.as_ref(), self.p, &pt);
-                        rec.residual = rec.residual.max(res);
+                        self.residual_owed = true;
                     }
                     driver = next;
                 }
@@ -1020,9 +1106,9 @@ pub(crate) fn run_path<T: Scalar>(
         return path;
     }
     info.start_pivots = eng.pivots;
+    // residuals are measured once the path is complete, on the original problem
+    // (crate::residual::measure_path)
     let mut rec = Recorder::new();
-    let start_point = eng.point(None);
-    rec.residual = residual_parts(m, q.as_ref(), d.as_ref(), p, &start_point);
     let end = eng.trace(lambda_max, Some(&mut rec));
     let ray_of = |eng: &Engine<'_, T>, driver: Var, col: &Col<T>, rate: T| {
         let mut dz = Col::zeros(n);
@@ -1102,11 +1188,8 @@ pub(crate) fn run_path<T: Scalar>(
             (Status::IllConditioned, eng.point(None), l, None, msg)
         }
     };
-    let res = residual_parts(m, q.as_ref(), d.as_ref(), p, &end_point);
-    rec.residual = rec.residual.max(res);
     fill(&mut info, &eng);
     info.turning_points = rec.turning_points;
-    info.residual = rec.residual;
     info.solve_seconds = timer.elapsed().as_secs_f64();
     Path {
         status,

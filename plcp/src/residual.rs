@@ -1,6 +1,6 @@
 //! Residuals of a point against a problem: equation, feasibility, complementarity.
 
-use crate::path::{Point, Residual};
+use crate::path::{Path, Point, Residual};
 use crate::problem::Plcp;
 use crate::scalar::Scalar;
 use faer::{ColRef, MatRef};
@@ -25,37 +25,34 @@ pub fn residual_parts<T: Scalar>(
     point: &Point<T>,
 ) -> Residual {
     let n = m.nrows() - p;
-    let l = point.lambda.to_f64();
-    let x: Vec<f64> = (0..p)
-        .map(|j| point.u[j].to_f64())
-        .chain((0..n).map(|i| point.z[i].to_f64()))
-        .collect();
-    // column-major sweep over the nonzero entries of x (contiguous columns)
     let dim = p + n;
+    // column-major sweep over the nonzero entries of x (contiguous columns,
+    // written over slices so that it vectorises), in the working precision
     let mut acc: Vec<T> = (0..dim).map(|r| q[r] + point.lambda * d[r]).collect();
-    let mut scale: Vec<f64> = (0..dim)
-        .map(|r| {
-            1.0f64
-                .max(q[r].to_f64().abs())
-                .max((l * d[r].to_f64()).abs())
-        })
+    let mut big: Vec<T> = (0..dim)
+        .map(|r| T::one().max(q[r].abs()).max((point.lambda * d[r]).abs()))
         .collect();
+    let mut colbuf: Vec<T> = Vec::new();
     for j in 0..dim {
         let xj = if j < p { point.u[j] } else { point.z[j - p] };
         if xj == T::zero() {
             continue;
         }
-        let xf = x[j].abs();
-        let col = m.col(j);
-        for r in 0..dim {
-            let a = col[r];
-            acc[r] += a * xj;
-            let t = a.to_f64().abs() * xf;
-            if t > scale[r] {
-                scale[r] = t;
+        let xa = xj.abs();
+        let col: &[T] = match m.col(j).try_as_col_major() {
+            Some(c) => c.as_slice(),
+            None => {
+                colbuf.clear();
+                colbuf.extend(m.col(j).iter().copied());
+                &colbuf
             }
+        };
+        for ((a, s), &mij) in acc.iter_mut().zip(big.iter_mut()).zip(col) {
+            *a += mij * xj;
+            *s = (*s).max(mij.abs() * xa);
         }
     }
+    let mut scale: Vec<f64> = big.iter().map(|s| s.to_f64()).collect();
     let mut eq = 0.0f64;
     for r in 0..dim {
         let mut v = acc[r];
@@ -80,4 +77,78 @@ pub fn residual_parts<T: Scalar>(
         feasibility: feas.max(0.0),
         complementarity: comp,
     }
+}
+
+/// Measures a whole path on `problem` and stores the result: every breakpoint
+/// gets the residuals of the point where it lies (the end of the segment before
+/// it, or the start), and `path.info.residual` becomes the largest residual over
+/// the start, the end of every bounded segment (with `both_ends`, the start of
+/// every segment too: for paths whose segments were computed independently) and
+/// the end point. One residual per breakpoint, `O(dim nnz(x))` each: as much
+/// work as tracing the path again. [`crate::solve`] does this only for Lemke on a
+/// Schur reduction; otherwise breakpoints carry the residuals of the basic
+/// solution measured during the trace (on the scaled system) and the start and
+/// end points are measured on `problem` ([`measure_ends`]).
+pub fn measure_path<T: Scalar>(problem: &Plcp<T>, path: &mut Path<T>, both_ends: bool) {
+    let mut worst = Residual::default();
+    let mut at_end: Vec<Option<Residual>> = vec![None; path.segments.len()];
+    let start = path
+        .segments
+        .first()
+        .map(|s| residual(problem, &s.eval(s.lambda_from)));
+    if let Some(r) = start {
+        worst = r;
+    }
+    for (k, seg) in path.segments.iter().enumerate() {
+        if both_ends && k > 0 {
+            worst = worst.max(residual(problem, &seg.eval(seg.lambda_from)));
+        }
+        if !seg.unbounded && seg.lambda_to.is_finite() {
+            let r = residual(problem, &seg.eval(seg.lambda_to));
+            worst = worst.max(r);
+            at_end[k] = Some(r);
+        }
+    }
+    let end = path
+        .end
+        .lambda
+        .is_finite()
+        .then(|| residual(problem, &path.end));
+    if let Some(r) = end {
+        worst = worst.max(r);
+    }
+    for b in &mut path.breakpoints {
+        b.residual = match b.segment {
+            0 => start.or(end).unwrap_or_default(),
+            k => at_end
+                .get(k - 1)
+                .copied()
+                .flatten()
+                .or(end)
+                .unwrap_or_default(),
+        };
+    }
+    path.info.residual = worst;
+}
+
+/// Measures the start of the path and its end point on `problem`;
+/// `path.info.residual` becomes the largest of those and of the breakpoints'
+/// residuals (kept as the trace measured them).
+pub fn measure_ends<T: Scalar>(problem: &Plcp<T>, path: &mut Path<T>) {
+    let mut worst = path
+        .breakpoints
+        .iter()
+        .fold(Residual::default(), |a, b| a.max(b.residual));
+    if let Some(s) = path.segments.first() {
+        worst = worst.max(residual(problem, &s.eval(s.lambda_from)));
+    }
+    if let Some(s) = path.segments.last() {
+        if !s.unbounded && s.lambda_to.is_finite() {
+            worst = worst.max(residual(problem, &s.eval(s.lambda_to)));
+        }
+    }
+    if path.end.lambda.is_finite() {
+        worst = worst.max(residual(problem, &path.end));
+    }
+    path.info.residual = worst;
 }

@@ -7,9 +7,8 @@
 //! few sweeps of Ruiz's method (each row and column divided by the square root
 //! of its largest entry).
 
-use crate::path::{Path, Residual};
+use crate::path::Path;
 use crate::problem::Plcp;
-use crate::residual::residual;
 use crate::scalar::Scalar;
 use faer::{Col, Mat};
 
@@ -35,20 +34,36 @@ impl Equilibration {
     pub fn ruiz<T: Scalar>(problem: &Plcp<T>, sweeps: usize) -> Self {
         let dim = problem.dim();
         let m = problem.m();
-        let a: Vec<f64> = (0..dim * dim)
-            .map(|k| m[(k % dim, k / dim)].to_f64().abs())
-            .collect();
+        let mut a: Vec<f64> = Vec::with_capacity(dim * dim);
+        for j in 0..dim {
+            a.extend(m.col(j).iter().map(|v| v.to_f64().abs()));
+        }
         let mut r = vec![1.0f64; dim];
         let mut c = vec![1.0f64; dim];
+        let mut rmax = vec![0.0f64; dim];
+        let mut cmax = vec![0.0f64; dim];
         for _ in 0..sweeps {
-            let mut rmax = vec![0.0f64; dim];
-            let mut cmax = vec![0.0f64; dim];
+            rmax.iter_mut().for_each(|v| *v = 0.0);
             for j in 0..dim {
-                for i in 0..dim {
-                    let v = a[i + j * dim] * r[i] * c[j];
-                    rmax[i] = rmax[i].max(v);
-                    cmax[j] = cmax[j].max(v);
+                let cj = c[j];
+                let mut cm = 0.0f64;
+                // NaN compares false and is skipped; infinities are caught below
+                for ((&aij, &ri), rm) in a[j * dim..(j + 1) * dim].iter().zip(&r).zip(&mut rmax) {
+                    let v = aij * ri * cj;
+                    if v > *rm {
+                        *rm = v;
+                    }
+                    if v > cm {
+                        cm = v;
+                    }
                 }
+                cmax[j] = cm;
+            }
+            // every row and column maximum within a factor of two of one: the
+            // power-of-two scales would not change any more
+            let settled = |v: &f64| *v == 0.0 || (0.5..=2.0).contains(v);
+            if rmax.iter().all(settled) && cmax.iter().all(settled) {
+                break;
             }
             for i in 0..dim {
                 if rmax[i] > 0.0 && rmax[i].is_finite() {
@@ -86,8 +101,8 @@ impl Equilibration {
             .ok()
     }
 
-    /// Maps a path of the scaled problem back to the original one and measures its
-    /// residuals on the original problem.
+    /// Maps a path of the scaled problem back to the original one (its residuals
+    /// are measured afterwards, on the original problem).
     pub fn unscale<T: Scalar>(&self, problem: &Plcp<T>, path: &mut Path<T>) {
         let p = problem.free();
         let n = problem.n();
@@ -105,23 +120,14 @@ impl Equilibration {
                 u[j] *= cu[j];
             }
         };
-        let mut res = Residual::default();
         for seg in &mut path.segments {
             fix(&mut seg.z_from, &mut seg.w_from, &mut seg.u_from);
             fix(&mut seg.dz, &mut seg.dw, &mut seg.du);
-            res = res.max(residual(problem, &seg.eval(seg.lambda_from)));
-            if !seg.unbounded {
-                res = res.max(residual(problem, &seg.eval(seg.lambda_to)));
-            }
         }
         fix(&mut path.end.z, &mut path.end.w, &mut path.end.u);
-        if path.end.lambda.is_finite() {
-            res = res.max(residual(problem, &path.end));
-        }
         if let Some(ray) = &mut path.ray {
             fix(&mut ray.start.z, &mut ray.start.w, &mut ray.start.u);
             fix(&mut ray.dz, &mut ray.dw, &mut ray.du);
         }
-        path.info.residual = res;
     }
 }

@@ -12,7 +12,9 @@
 //! | zero step | a step is degenerate (zero length) | ratio `<= tie tolerance` |
 //! | rank of the free block | a pivot of the full-pivoting LU counts | `abs(u_kk) > sqrt(eps) * max abs(u_11)`... see [`rank_tol`] |
 //! | condition | a basis is ill-conditioned | `cond_1(B) * eps > max_cond_eps` (default `1e-2`) |
-//! | residuals | reported, not thresholds | relative to `max(1, max abs(q), abs(L) max abs(d), max abs(M) max abs(x))` per row |
+//! | residuals at breakpoints | reported, measured by the trace with the next column solve (one pass over the basic columns, on the scaled system) | equation row `r` relative to `max(1, abs(q_r), abs(L d_r), abs((B x)_r))`: at least the componentwise (Oettli-Prager) backward error, up to the floor of 1 |
+//! | residuals of points | reported ([`crate::residual::residual`]: start, end, `Path::at`, and every breakpoint for Lemke on a Schur reduction or on request, [`crate::residual::measure_path`]) | equation row `r` relative to `max(1, abs(q_r), abs(L d_r), abs(w_r), max_j abs(M_rj x_j))` |
+//! | residual guard | a path that claims success is downgraded to `ill_conditioned` | largest reported residual `> sqrt(eps)` |
 
 use crate::scalar::Scalar;
 

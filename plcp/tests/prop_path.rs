@@ -251,6 +251,28 @@ fn check_instance<T: Scalar, O: Scalar>(
         return Err("Reached with an infinite lambda_max".into());
     }
     let points = check_path(&problem, &path, tol, frac, kind.continuity(), true)?;
+    // the residuals the trace reports at its breakpoints (on the scaled system,
+    // fused with the next column solve) are bounded by the path's, and a full
+    // re-measurement on the original problem passes the same guard
+    let worst = path.info.residual.worst();
+    if let Some(b) = path.breakpoints.iter().find(|b| b.residual.worst() > worst) {
+        return Err(format!(
+            "breakpoint at L = {:e} reports residual {:e} above the path's {worst:e}",
+            b.lambda.to_f64(),
+            b.residual.worst()
+        ));
+    }
+    if success {
+        let mut whole = path.clone();
+        plcp::residual::measure_path(&problem, &mut whole, true);
+        let limit = T::eps().to_f64().sqrt();
+        if whole.info.residual.worst() > limit {
+            return Err(format!(
+                "re-measured on the original problem the path's residual is {:e} > sqrt(eps) (the trace reported {worst:e})",
+                whole.info.residual.worst()
+            ));
+        }
+    }
     // the oracle at the checked points
     let step = (points.len() / max_oracle_points.max(1)).max(1);
     for pt in points.iter().step_by(step) {
