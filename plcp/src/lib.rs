@@ -132,6 +132,25 @@ fn solve_unchecked<T: Scalar>(
     settings: &Settings<T>,
 ) -> Result<Path<T>, PlcpError> {
     settings.validate(problem.n())?;
+    if let Some(b) = &settings.warm_basis {
+        let (p, dim) = (problem.free(), problem.dim());
+        let why = if b.len() != dim {
+            Some(format!("{} variables for {dim} rows (p + n)", b.len()))
+        } else {
+            b.iter().find_map(|v| match *v {
+                Var::U(j) | Var::Artificial(j) if j >= p => {
+                    Some(format!("{v} with only {p} free variables / equality rows"))
+                }
+                _ => None,
+            })
+        };
+        if let Some(why) = why {
+            return Err(PlcpError::Invalid {
+                what: "warm_basis".into(),
+                why,
+            });
+        }
+    }
     let timer = std::time::Instant::now();
     let eq = if settings.scaling {
         scaling::Equilibration::ruiz(problem, 8)

@@ -250,6 +250,11 @@ pub struct Info {
     pub max_condition: f64,
     /// The free block (mixed form).
     pub free_block: FreeBlockInfo,
+    /// The trace started from [`crate::Settings::warm_basis`] (no start phase).
+    pub warm_start: bool,
+    /// Why a warm basis that was given was not used (singular, or infeasible at
+    /// `lambda0`); empty otherwise.
+    pub warm_start_note: String,
     /// Wall-clock seconds of the solve alone.
     pub solve_seconds: f64,
 }
@@ -292,6 +297,12 @@ pub struct Path<T: Scalar> {
     pub message: String,
     /// Counts, residuals, timing.
     pub info: Info,
+    /// For `Reached`: the basis of the end point as a vertex at `L = lambda_reached`
+    /// (one variable per row position, `L` not among them), to warm-start
+    /// another problem with the same `M` ([`crate::Settings::warm_basis`]).
+    /// For Lemke on a Schur reduction it holds the reduced problem's basis
+    /// (`z` and `w` only). `None` for every other status.
+    pub final_basis: Option<Vec<Var>>,
 }
 
 impl<T: Scalar> Path<T> {

@@ -207,6 +207,24 @@ impl<'a, T: Scalar> Engine<'a, T> {
         Ok(())
     }
 
+    /// Why the current basic solution is not a feasible start (a basic `z` or `w`
+    /// negative, or an artificial variable nonzero, beyond the tie tolerance), or
+    /// `None` if it is one.
+    pub(crate) fn infeasibility(&self) -> Option<String> {
+        let scale = self.xscale();
+        let tol = self.tie_tol * scale;
+        (0..self.dim).find_map(|r| {
+            let v = self.basis[r];
+            let x = self.x[r];
+            let bad = match v {
+                Var::W(_) | Var::Z(_) => !x.is_finite() || x < -tol,
+                Var::Artificial(_) => !x.is_finite() || x.abs() > tol,
+                _ => !x.is_finite(),
+            };
+            bad.then(|| format!("{v} = {:e} at L = {:e}", x.to_f64(), self.lambda.to_f64()))
+        })
+    }
+
     /// `q + L d` when `L` is nonbasic, `q` when it is basic.
     fn rhs(&self) -> Col<T> {
         if self.row_of(Var::Lambda).is_some() {
@@ -1044,7 +1062,7 @@ pub(crate) fn run_path<T: Scalar>(
     method: &'static str,
     free_block: crate::path::FreeBlockInfo,
 ) -> crate::path::Path<T> {
-    use crate::path::{Info, Path, Ray, Status};
+    use crate::path::{Info, Path, Status};
     let timer = std::time::Instant::now();
     let dim = m.nrows();
     let n = dim - p;
@@ -1070,7 +1088,41 @@ pub(crate) fn run_path<T: Scalar>(
         ray: None,
         message,
         info,
+        final_basis: None,
     };
+    // a warm start: the given basis, if nonsingular and feasible at lambda0
+    let mut warm_note = String::new();
+    let mut warm: Option<Engine<'_, T>> = None;
+    if let Some(wb) = &settings.warm_basis {
+        let mut wb = wb.clone();
+        if wb.len() != dim {
+            // a mixed problem's basis for its Schur reduction: z and w only
+            wb.retain(|v| matches!(v, Var::W(_) | Var::Z(_)));
+        }
+        let fits = wb.len() == dim
+            && wb.iter().all(|v| match *v {
+                Var::W(i) | Var::Z(i) => i < n,
+                Var::U(j) | Var::Artificial(j) => j < p,
+                Var::Lambda => false,
+            });
+        if !fits {
+            warm_note = "the warm basis does not fit this problem's rows".into();
+        } else {
+            match Engine::new(m, p, q.clone(), d.clone(), wb, lambda0, settings) {
+                Err(msg) => warm_note = format!("warm basis not used: {msg}"),
+                Ok(e) => match e.infeasibility() {
+                    Some(why) => warm_note = format!("warm basis not used: {why}"),
+                    None => warm = Some(e),
+                },
+            }
+        }
+    }
+    info.warm_start = warm.is_some();
+    info.warm_start_note = warm_note;
+    if let Some(mut eng) = warm {
+        let rec = Recorder::new();
+        return finish_path(&mut eng, rec, lambda0, lambda_max, info, timer, true);
+    }
     let mut eng = match Engine::new(m, p, q.clone(), d.clone(), start, lambda0, settings) {
         Ok(e) => e,
         Err(msg) => {
@@ -1108,7 +1160,32 @@ pub(crate) fn run_path<T: Scalar>(
     info.start_pivots = eng.pivots;
     // residuals are measured once the path is complete, on the original problem
     // (crate::residual::measure_path)
-    let mut rec = Recorder::new();
+    let rec = Recorder::new();
+    finish_path(&mut eng, rec, lambda0, lambda_max, info, timer, false)
+}
+
+/// Traces from the engine's basis (after the start phase, or a warm start) to
+/// `lambda_max` and assembles the path.
+fn finish_path<T: Scalar>(
+    eng: &mut Engine<'_, T>,
+    mut rec: Recorder<T>,
+    lambda0: T,
+    lambda_max: Option<T>,
+    mut info: crate::path::Info,
+    timer: std::time::Instant,
+    warm: bool,
+) -> crate::path::Path<T> {
+    use crate::path::{Path, Ray, Status};
+    let (n, p) = (eng.n, eng.p);
+    let fill = |info: &mut crate::path::Info, eng: &Engine<'_, T>| {
+        info.pivots = eng.pivots;
+        info.degenerate_pivots = eng.degenerate_pivots;
+        info.refactorisations = eng.refactorisations;
+        info.max_condition = eng.max_cond;
+    };
+    if warm {
+        info.start_pivots = 0;
+    }
     let end = eng.trace(lambda_max, Some(&mut rec));
     let ray_of = |eng: &Engine<'_, T>, driver: Var, col: &Col<T>, rate: T| {
         let mut dz = Col::zeros(n);
@@ -1132,14 +1209,21 @@ pub(crate) fn run_path<T: Scalar>(
             dlambda: rate,
         }
     };
+    let mut final_basis = None;
     let (status, end_point, lambda_reached, ray, message) = match end {
         TraceEnd::Reached { driver, theta } => {
             let pt = eng.point(Some((driver, theta)));
+            // the end as a vertex at L fixed: the driver takes L's position
+            let mut fb = eng.basis.clone();
+            if let Some(l) = eng.row_of(Var::Lambda) {
+                fb[l] = driver;
+            }
+            final_basis = Some(fb);
             let l = pt.lambda;
             (Status::Reached, pt, l, None, String::new())
         }
         TraceEnd::UnboundedRay { driver, col, rate } => {
-            let r = ray_of(&eng, driver, &col, rate);
+            let r = ray_of(eng, driver, &col, rate);
             (
                 Status::UnboundedRay,
                 eng.point(None),
@@ -1152,7 +1236,7 @@ pub(crate) fn run_path<T: Scalar>(
             )
         }
         TraceEnd::SecondaryRay { driver, col, rate } => {
-            let r = ray_of(&eng, driver, &col, rate);
+            let r = ray_of(eng, driver, &col, rate);
             let l = eng.lambda;
             (
                 Status::SecondaryRay,
@@ -1188,7 +1272,7 @@ pub(crate) fn run_path<T: Scalar>(
             (Status::IllConditioned, eng.point(None), l, None, msg)
         }
     };
-    fill(&mut info, &eng);
+    fill(&mut info, eng);
     info.turning_points = rec.turning_points;
     info.solve_seconds = timer.elapsed().as_secs_f64();
     Path {
@@ -1202,5 +1286,6 @@ pub(crate) fn run_path<T: Scalar>(
         ray,
         message,
         info,
+        final_basis,
     }
 }

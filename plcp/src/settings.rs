@@ -1,6 +1,7 @@
 //! Settings of the solvers, with documented defaults and a `validate()`.
 
 use crate::error::PlcpError;
+use crate::path::Var;
 use crate::scalar::Scalar;
 use faer::Col;
 
@@ -57,6 +58,16 @@ pub struct Settings<T: Scalar> {
     pub scaling: bool,
     /// How the basis is represented. Default [`BasisKind::Block`].
     pub basis: BasisKind,
+    /// Start from this basis instead of the cold start (the start phase), if it
+    /// is nonsingular and its basic solution is feasible at `lambda0`; otherwise
+    /// the cold start runs and [`crate::Info::warm_start`] says why. One variable
+    /// per row position (`p + n` of them: `u`, `z`, `w` or artificial; not `L`),
+    /// typically [`crate::Path::final_basis`] of an earlier problem with the same
+    /// `M` (for a mixed problem solved by Lemke on the Schur reduction, its `u`
+    /// and artificial entries are dropped). Typical use: re-solving after a change
+    /// of `q`, as the path from the old `q` (`L = 0`) to the new one (`L = 1`)
+    /// with `d = q_new - q_old`. Default `None`.
+    pub warm_basis: Option<Vec<Var>>,
 }
 
 /// The representation of the basis inverse (see [`crate::basis`]).
@@ -82,6 +93,7 @@ impl<T: Scalar> Default for Settings<T> {
             max_cond_eps: 1e-2,
             scaling: true,
             basis: BasisKind::Block,
+            warm_basis: None,
         }
     }
 }
@@ -132,6 +144,30 @@ impl<T: Scalar> Settings<T> {
                 what: "refactor_period".into(),
                 why: "must be at least 1".into(),
             });
+        }
+        if let Some(b) = &self.warm_basis {
+            let mut seen = std::collections::HashSet::new();
+            for v in b {
+                let bad = match *v {
+                    Var::W(i) | Var::Z(i) => {
+                        (i >= n).then(|| format!("{v} with only {n} complementary pairs"))
+                    }
+                    Var::Lambda => Some("L cannot be basic in a start basis".into()),
+                    Var::U(_) | Var::Artificial(_) => None,
+                };
+                if let Some(why) = bad {
+                    return Err(PlcpError::Invalid {
+                        what: "warm_basis".into(),
+                        why,
+                    });
+                }
+                if !seen.insert(*v) {
+                    return Err(PlcpError::Invalid {
+                        what: "warm_basis".into(),
+                        why: format!("{v} appears twice"),
+                    });
+                }
+            }
         }
         if self.max_pivots == Some(0) {
             return Err(PlcpError::Invalid {
