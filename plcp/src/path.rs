@@ -242,6 +242,10 @@ pub struct Info {
     pub degenerate_pivots: usize,
     /// Basis refactorisations.
     pub refactorisations: usize,
+    /// Iterative-refinement steps (basic values at breakpoints whose residual
+    /// exceeded `Settings::refine_tol_eps`, entering columns while the basis
+    /// condition estimate exceeded `Settings::refine_cond_eps`).
+    pub refinements: usize,
     /// Points where `L` started to decrease along the path.
     pub turning_points: usize,
     /// Largest residuals at any breakpoint (and at the end).

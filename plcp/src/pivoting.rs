@@ -74,7 +74,11 @@ pub(crate) struct Engine<'a, T: Scalar> {
     pub pivots: usize,
     pub degenerate_pivots: usize,
     pub refactorisations: usize,
+    /// Iterative-refinement steps taken (at breakpoints and on entering columns).
+    pub refinements: usize,
     since_refactor: usize,
+    /// The last condition estimate says entering columns need a refinement step.
+    refine_columns: bool,
     pub max_cond: f64,
     pivot_tol: T,
     /// Print every pivot to stderr (environment variable `PLCP_TRACE` set).
@@ -136,7 +140,9 @@ impl<'a, T: Scalar> Engine<'a, T> {
             pivots: 0,
             degenerate_pivots: 0,
             refactorisations: 0,
+            refinements: 0,
             since_refactor: 0,
+            refine_columns: false,
             max_cond: 1.0,
             pivot_tol: T::from_f64(settings.pivot_tol_eps) * T::eps(),
             noise: T::from_f64(settings.pivot_tol_eps) * T::eps(),
@@ -177,6 +183,7 @@ impl<'a, T: Scalar> Engine<'a, T> {
         self.refactorisations += 1;
         self.since_refactor = 0;
         self.max_cond = self.max_cond.max(cond);
+        self.refine_columns = cond * T::eps().to_f64() > self.settings.refine_cond_eps;
         self.noise = self.pivot_tol * T::from_f64(cond.clamp(1.0, 1e6));
         let rhs = self.rhs();
         let xnew = self.factor.solve(&rhs);
@@ -496,21 +503,80 @@ impl<'a, T: Scalar> Engine<'a, T> {
         end
     }
 
+    /// The right-hand side of the basic equations: `q + L d` when `L` is
+    /// nonbasic, `q` when it is basic (its column is in `B`).
+    fn basic_rhs(&self, i: usize) -> T {
+        if self.row_of(Var::Lambda).is_none() {
+            self.q[i] + self.lambda * self.d[i]
+        } else {
+            self.q[i]
+        }
+    }
+
+    /// Iterative refinement of the basic values at a breakpoint, on evidence:
+    /// given `B x`, while the equation residual exceeds `refine_tol_eps * eps`
+    /// (at most two steps), `x += B^{-1} (rhs - B x)` in the working precision.
+    /// The explicit inverse is not backward stable (its residuals grow like
+    /// `cond(B) eps`); one step brings them back to the order of `eps` whenever
+    /// `cond(B) eps < 1`. Returns the residuals after refinement.
+    fn refine_values(&mut self, mut bx: Col<T>) -> Residual {
+        let mut res = self.residual_of(&bx);
+        let tol = self.settings.refine_tol_eps * T::eps().to_f64();
+        let l = self.row_of(Var::Lambda);
+        for _ in 0..2 {
+            if res.equation.is_nan() || res.equation <= tol {
+                break;
+            }
+            let r = Col::from_fn(self.dim, |i| self.basic_rhs(i) - bx[i]);
+            let dx = self.factor.solve(&r);
+            let mut xn = self.x.clone();
+            for k in 0..self.dim {
+                xn[k] += dx[k];
+            }
+            if let Some(l) = l {
+                // L is the path's parameter: kept exact
+                xn[l] = self.lambda;
+            }
+            let bxn = apply(self.m, &self.d, self.p, &self.basis, &xn);
+            let resn = self.residual_of_values(&bxn, &xn);
+            self.refinements += 1;
+            if resn.equation.is_nan() || resn.equation >= res.equation {
+                break;
+            }
+            self.x = xn;
+            bx = bxn;
+            res = resn;
+        }
+        res
+    }
+
+    /// One refinement step of an entering column `col = B^{-1} a_v`, when the
+    /// basis condition estimate says the explicit inverse loses digits.
+    fn refine_column(&mut self, v: Var, col: &mut Col<T>) {
+        let a = var_column(self.m, &self.d, self.p, v);
+        let bc = apply(self.m, &self.d, self.p, &self.basis, col);
+        let r = Col::from_fn(self.dim, |i| a[i] - bc[i]);
+        let dc = self.factor.solve(&r);
+        for k in 0..self.dim {
+            col[k] += dc[k];
+        }
+        self.refinements += 1;
+    }
+
     /// The residuals of the basic solution from `B x` (see [`Residual`]): the
     /// equation `sum_v a_v v = q` relative to `max(1, |q_r|, |L d_r|, |(B x)_r|)`
     /// per row, which is at least the componentwise (Oettli-Prager) backward
     /// error up to the floor of 1; feasibility and complementarity of the basic
     /// `z`, `w`.
     fn residual_of(&self, bx: &Col<T>) -> Residual {
-        let lambda_nonbasic = self.row_of(Var::Lambda).is_none();
+        self.residual_of_values(bx, &self.x)
+    }
+
+    fn residual_of_values(&self, bx: &Col<T>, x: &Col<T>) -> Residual {
         let mut eq = 0.0f64;
         for i in 0..self.dim {
             let ld = self.lambda * self.d[i];
-            let rhs = if lambda_nonbasic {
-                self.q[i] + ld
-            } else {
-                self.q[i]
-            };
+            let rhs = self.basic_rhs(i);
             let r = (rhs - bx[i]).abs();
             let s = T::one().max(self.q[i].abs()).max(ld.abs()).max(bx[i].abs());
             eq = eq.max((r / s).to_f64());
@@ -521,11 +587,11 @@ impl<'a, T: Scalar> Engine<'a, T> {
         for (r, v) in self.basis.iter().enumerate() {
             match *v {
                 Var::Z(i) => {
-                    zv[i] = self.x[r].to_f64();
+                    zv[i] = x[r].to_f64();
                     sz = sz.max(zv[i].abs());
                 }
                 Var::W(i) => {
-                    wv[i] = self.x[r].to_f64();
+                    wv[i] = x[r].to_f64();
                     sw = sw.max(wv[i].abs());
                 }
                 _ => {}
@@ -556,7 +622,7 @@ impl<'a, T: Scalar> Engine<'a, T> {
             if self.pivots >= self.max_pivots {
                 return TraceEnd::PivotLimit;
             }
-            let col = match rec.as_deref_mut() {
+            let mut col = match rec.as_deref_mut() {
                 Some(rec) if self.residual_owed => {
                     let a = var_column(self.m, &self.d, self.p, driver);
                     let (col, bx) = self.factor.solve_and_apply(
@@ -567,7 +633,7 @@ impl<'a, T: Scalar> Engine<'a, T> {
                         &a,
                         &self.x,
                     );
-                    let res = self.residual_of(&bx);
+                    let res = self.refine_values(bx);
                     if let Some(b) = rec.breakpoints.last_mut() {
                         b.residual = res;
                     }
@@ -576,6 +642,9 @@ impl<'a, T: Scalar> Engine<'a, T> {
                 }
                 _ => self.column(driver),
             };
+            if self.refine_columns {
+                self.refine_column(driver, &mut col);
+            }
             let colmax = (0..self.dim).fold(T::zero(), |a, i| a.max(col[i].abs()));
             let rate = match driver {
                 Var::Lambda => T::one(),
@@ -1134,6 +1203,7 @@ pub(crate) fn run_path<T: Scalar>(
         info.pivots = eng.pivots;
         info.degenerate_pivots = eng.degenerate_pivots;
         info.refactorisations = eng.refactorisations;
+        info.refinements = eng.refinements;
         info.max_condition = eng.max_cond;
     };
     let started = if method == "wolfe" {
@@ -1181,6 +1251,7 @@ fn finish_path<T: Scalar>(
         info.pivots = eng.pivots;
         info.degenerate_pivots = eng.degenerate_pivots;
         info.refactorisations = eng.refactorisations;
+        info.refinements = eng.refinements;
         info.max_condition = eng.max_cond;
     };
     if warm {

@@ -53,6 +53,13 @@ pub struct Settings<T: Scalar> {
     /// A basis whose estimated 1-norm condition number times epsilon exceeds this
     /// stops the path with `IllConditioned`. Default `1e-2`.
     pub max_cond_eps: f64,
+    /// Refine the basic values at a breakpoint (iterative refinement, at most two
+    /// steps) when its equation residual exceeds `refine_tol_eps * eps`.
+    /// Default `1e3`.
+    pub refine_tol_eps: f64,
+    /// Refine every entering column (one step) while the basis condition
+    /// estimate times `eps` exceeds this. Default `1e-12`.
+    pub refine_cond_eps: f64,
     /// Equilibrate `M` (rows and columns, by powers of two) before pivoting and
     /// unscale the answer. Default `true`. See [`crate::scaling`].
     pub scaling: bool,
@@ -91,6 +98,8 @@ impl<T: Scalar> Default for Settings<T> {
             tie_tol_eps: 1e3,
             refactor_period: 50,
             max_cond_eps: 1e-2,
+            refine_tol_eps: 1e3,
+            refine_cond_eps: 1e-12,
             scaling: true,
             basis: BasisKind::Block,
             warm_basis: None,
@@ -139,6 +148,8 @@ impl<T: Scalar> Settings<T> {
         pos("pivot_tol_eps", self.pivot_tol_eps)?;
         pos("tie_tol_eps", self.tie_tol_eps)?;
         pos("max_cond_eps", self.max_cond_eps)?;
+        pos("refine_tol_eps", self.refine_tol_eps)?;
+        pos("refine_cond_eps", self.refine_cond_eps)?;
         if self.refactor_period == 0 {
             return Err(PlcpError::Invalid {
                 what: "refactor_period".into(),
