@@ -40,7 +40,13 @@ pub(crate) fn solve<T: Scalar>(
     if problem.free() > 0 {
         let timer = std::time::Instant::now();
         let red = Reduction::new(problem)?;
-        let mut path = solve_standard(&red.reduced, settings, "lemke (Schur reduction)");
+        // the reduced data are known to about eps cond(F): steps of L within that
+        // are ties (a turning point or a zero-length step there is an artefact of
+        // the reduction, not a property of the problem)
+        let mut reduced_settings = settings.clone();
+        reduced_settings.tie_tol_eps *=
+            crate::tolerance::reduction_tie_factor::<T>(red.cond, settings.tie_tol_eps);
+        let mut path = solve_standard(&red.reduced, &reduced_settings, "lemke (Schur reduction)");
         // recover u on every segment and at the end, and measure the residual on
         // the original (unreduced) problem
         let mut res = crate::path::Residual::default();
@@ -48,6 +54,18 @@ pub(crate) fn solve<T: Scalar>(
             seg.u_from = red.recover_u(&seg.z_from, seg.lambda_from);
             seg.du = red.recover_du(&seg.dz);
             polish_segment(problem, seg);
+        }
+        reintersect_breakpoints(&mut path);
+        for b in &mut path.breakpoints {
+            let seg = match b.segment {
+                0 => path.segments.first(),
+                k => path.segments.get(k - 1),
+            };
+            if let Some(seg) = seg {
+                b.residual = residual(problem, &seg.eval(b.lambda));
+            }
+        }
+        for seg in &path.segments {
             res = res.max(residual(problem, &seg.eval(seg.lambda_from)));
             if !seg.unbounded {
                 res = res.max(residual(problem, &seg.eval(seg.lambda_to)));
@@ -78,6 +96,77 @@ pub(crate) fn solve<T: Scalar>(
         return Ok(path);
     }
     Ok(solve_standard(problem, settings, "lemke"))
+}
+
+/// Moves each breakpoint between two polished segments to where the variable
+/// that leaves the basis there reaches zero on the polished segment before it.
+///
+/// The reduced path finds its breakpoints on the Schur complement, whose values
+/// carry an error of about `eps cond(F)`; the polished segments are accurate, so
+/// the breakpoint taken from them is too, and both segments meet there (they
+/// solve the same equations with the leaving variable at zero). Only simple
+/// breakpoints are moved (one pair swapped, `L` rising through them) and only
+/// by less than `sqrt(eps)` relative: a larger move would mean the two
+/// computations disagree on more than rounding, and the reduced path is kept.
+fn reintersect_breakpoints<T: Scalar>(path: &mut Path<T>) {
+    let tol = T::eps().sqrt();
+    for k in 1..path.segments.len() {
+        let (prev, next) = (&path.segments[k - 1], &path.segments[k]);
+        let lb = prev.lambda_to;
+        if next.lambda_from != lb || prev.lambda_from >= lb {
+            continue;
+        }
+        if !next.unbounded && next.lambda_to <= lb {
+            continue;
+        }
+        // the variables basic before and nonbasic after reach zero here (several
+        // at once after a degenerate run of pivots at one L): the first of them
+        let mut l_new: Option<T> = None;
+        let mut ok = true;
+        for i in 0..prev.basis.len() {
+            if prev.basis[i] == next.basis[i] {
+                continue;
+            }
+            let (v, dv) = match prev.basis[i] {
+                Var::Z(_) => (prev.z_from[i], prev.dz[i]),
+                Var::W(_) => (prev.w_from[i], prev.dw[i]),
+                _ => (T::zero(), T::zero()),
+            };
+            let root = prev.lambda_from - v / dv;
+            if dv == T::zero() || !root.is_finite() {
+                ok = false;
+                break;
+            }
+            l_new = Some(l_new.map_or(root, |l| l.min(root)));
+        }
+        let Some(l_new) = l_new.filter(|_| ok) else {
+            continue;
+        };
+        if (l_new - lb).abs() > tol * lb.abs().max(T::one())
+            || l_new <= prev.lambda_from
+            || (!next.unbounded && l_new >= next.lambda_to)
+        {
+            continue;
+        }
+        let shift = l_new - lb;
+        let next = &mut path.segments[k];
+        for (from, slope) in [
+            (&mut next.z_from, &next.dz),
+            (&mut next.w_from, &next.dw),
+            (&mut next.u_from, &next.du),
+        ] {
+            for j in 0..from.nrows() {
+                from[j] += slope[j] * shift;
+            }
+        }
+        next.lambda_from = l_new;
+        path.segments[k - 1].lambda_to = l_new;
+        for b in &mut path.breakpoints {
+            if b.segment == k && b.lambda == lb {
+                b.lambda = l_new;
+            }
+        }
+    }
 }
 
 /// Recomputes a segment of the reduced path on the unreduced system: with the

@@ -666,7 +666,14 @@ impl<'a, T: Scalar> Engine<'a, T> {
             let block = self.ratio_test(&col);
             if let (true, Some(end)) = (rising, lambda_end) {
                 let theta_end = (end - self.lambda) / rate;
-                if block.as_ref().is_none_or(|(_, tb)| theta_end <= *tb) {
+                // a block at the end value (within the tie tolerance relative to
+                // the end value: no floor, the start phase's end may be tiny) is
+                // a tie, and ties go to the end: the start phase's artificial
+                // leaves, L_max is reached
+                let end_tol = self.tie_tol * end.abs().max(self.lambda.abs());
+                if block.as_ref().is_none_or(|(_, tb)| {
+                    theta_end <= *tb || end - (self.lambda + *tb * rate) <= end_tol
+                }) {
                     let theta_end = theta_end.max(T::zero());
                     if let Some(rec) = rec.as_deref_mut() {
                         if theta_end > T::zero() {

@@ -19,6 +19,11 @@ pub struct Reduction<T: Scalar> {
     pub reduced: Plcp<T>,
     /// `G = F^{-1} [M[u,z] | q_u | d_u]`: `u = -(G_z z + G_q + L G_d)`.
     g: Mat<T>,
+    /// Estimate of the condition number of the free block `F` (ratio of the
+    /// largest to the smallest pivot of its full-pivoting LU, a lower bound
+    /// within a modest factor): the reduced data carry an error of about
+    /// `eps` times this.
+    pub cond: f64,
 }
 
 /// Numerical rank of a square matrix by full-pivoting LU.
@@ -36,6 +41,29 @@ pub fn numerical_rank<T: Scalar>(f: faer::MatRef<'_, T>) -> usize {
     }
     let tol = rank_tol(p, largest);
     (0..k).filter(|&i| u[(i, i)].abs() > tol).count()
+}
+
+/// Largest over smallest pivot of a full-pivoting LU of a square matrix
+/// (infinite when a pivot is zero): a cheap estimate of its condition number.
+pub fn pivot_ratio<T: Scalar>(f: faer::MatRef<'_, T>) -> f64 {
+    let p = f.nrows();
+    if p == 0 {
+        return 1.0;
+    }
+    let lu = f.full_piv_lu();
+    let u = lu.U();
+    let k = p.min(u.ncols());
+    let (mut hi, mut lo) = (0.0f64, f64::INFINITY);
+    for i in 0..k {
+        let v = u[(i, i)].abs().to_f64();
+        hi = hi.max(v);
+        lo = lo.min(v);
+    }
+    if lo == 0.0 {
+        f64::INFINITY
+    } else {
+        hi / lo
+    }
 }
 
 impl<T: Scalar> Reduction<T> {
@@ -97,7 +125,8 @@ impl<T: Scalar> Reduction<T> {
         }
         let reduced = Plcp::new(mr.as_ref(), qr.as_ref(), dr.as_ref())?
             .with_range(problem.lambda0(), problem.lambda_max())?;
-        Ok(Self { reduced, g })
+        let cond = pivot_ratio(f);
+        Ok(Self { reduced, g, cond })
     }
 
     /// `u` at parameter `lambda` for the complementary part `z`.

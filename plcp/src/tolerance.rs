@@ -15,6 +15,8 @@
 //! | residuals at breakpoints | reported, measured by the trace with the next column solve (one pass over the basic columns, on the scaled system) | equation row `r` relative to `max(1, abs(q_r), abs(L d_r), abs((B x)_r))`: at least the componentwise (Oettli-Prager) backward error, up to the floor of 1 |
 //! | residuals of points | reported ([`crate::residual::residual`]: start, end, `Path::at`, and every breakpoint for Lemke on a Schur reduction or on request, [`crate::residual::measure_path`]) | equation row `r` relative to `max(1, abs(q_r), abs(L d_r), abs(w_r), max_j abs(M_rj x_j))` |
 //! | residual guard | a path that claims success is downgraded to `ill_conditioned` | largest reported residual `> sqrt(eps)` |
+//! | reduction ties | Lemke on the Schur reduction of a mixed problem: the tie tolerance of the reduced path | `tie_tol_eps` times [`reduction_tie_factor`] (`cond(F)`, at least 1, and the product at most `sqrt(eps)`) |
+//! | breakpoint re-intersection | Lemke on the Schur reduction: a breakpoint moves to where the polished segment's leaving variable is zero | only by `<= sqrt(eps) * max(1, abs(L))` |
 
 use crate::scalar::Scalar;
 
@@ -22,4 +24,20 @@ use crate::scalar::Scalar;
 /// times the largest pivot. Pivots below it count as zero.
 pub fn rank_tol<T: Scalar>(dim: usize, largest_pivot: T) -> T {
     T::from_f64(100.0 * (dim.max(1) as f64)) * T::eps() * largest_pivot
+}
+
+/// The factor applied to the tie tolerance of the reduced path when a mixed
+/// problem is solved by Lemke on its Schur reduction: the reduced data carry an
+/// error of about `eps cond(F)`, so ratios and steps of `L` within that are ties.
+/// `cond(F)`, but never so much that the tie tolerance `tie_tol_eps * eps`
+/// exceeds `sqrt(eps)` (beyond that a tie would hide real steps of the path;
+/// the residual guard and Wolfe's long form are then the remedy), and at least 1.
+pub fn reduction_tie_factor<T: Scalar>(cond_f: f64, tie_tol_eps: f64) -> f64 {
+    let eps = T::eps().to_f64();
+    let cap = (eps.sqrt() / (tie_tol_eps * eps)).max(1.0);
+    if cond_f.is_finite() {
+        cond_f.clamp(1.0, cap)
+    } else {
+        cap
+    }
 }

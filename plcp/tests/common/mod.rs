@@ -879,7 +879,14 @@ pub fn check_path<T: Scalar>(
             return Err(format!("breakpoint {k} at a non-finite L"));
         }
         if monotone_l {
-            if bp.turning {
+            // a turning point flagged on a step of L within the tolerance (Lemke
+            // on a Schur reduction sees steps at the reduction's error) is no
+            // reversal; one that the path then follows backwards is
+            let reverses = path
+                .segments
+                .get(bp.segment)
+                .is_some_and(|s| !leq(s.lambda_from, s.lambda_to));
+            if bp.turning && reverses {
                 return Err(format!(
                     "breakpoint {k} is a turning point on a monotone problem"
                 ));
@@ -905,9 +912,20 @@ pub fn check_path<T: Scalar>(
         }
         prev_l = Some(bp.lambda);
     }
-    if monotone_l && path.info.turning_points != 0 {
+    let reversals = path
+        .breakpoints
+        .iter()
+        .filter(|bp| {
+            bp.turning
+                && path
+                    .segments
+                    .get(bp.segment)
+                    .is_some_and(|s| !leq(s.lambda_from, s.lambda_to))
+        })
+        .count();
+    if monotone_l && reversals != 0 {
         return Err(format!(
-            "{} turning points on a monotone problem",
+            "{reversals} turning points on a monotone problem that the path follows backwards (of {} flagged)",
             path.info.turning_points
         ));
     }
