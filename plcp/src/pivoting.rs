@@ -653,7 +653,13 @@ impl<'a, T: Scalar> Engine<'a, T> {
                     None => T::zero(),
                 },
             };
-            let rate_tol = self.noise * colmax.max(T::one());
+            // L driving itself has rate one exactly (no tolerance: a column with
+            // large free-variable entries must not make it look stalled)
+            let rate_tol = if driver == Var::Lambda {
+                T::zero()
+            } else {
+                self.noise * colmax.max(T::one())
+            };
             let rising = rate > rate_tol;
             let moving = rate.abs() > rate_tol;
             if !(0..self.dim).all(|i| col[i].is_finite() && self.x[i].is_finite()) {

@@ -24,7 +24,7 @@
 //! a [`crate::Status`] (`infeasible`, `secondary_ray`), never a wrong answer: every
 //! breakpoint's residual is measured on the unreduced system.
 
-use crate::path::{FreeBlockInfo, Path, Var};
+use crate::path::{FreeBlockInfo, Path, Status, Var};
 use crate::pivoting::run_path;
 use crate::reduce::numerical_rank;
 use crate::tolerance::rank_tol;
@@ -32,11 +32,16 @@ use crate::{error::PlcpError, problem::Plcp, scalar::Scalar, settings::Settings}
 
 /// The start basis of the long form: free variables by a full-pivoting LU of the
 /// free block, artificial variables in the dependent rows, all `w`.
-pub(crate) fn start_basis<T: Scalar>(problem: &Plcp<T>) -> (Vec<Var>, FreeBlockInfo) {
+///
+/// Also returns the largest dropped pivot relative to the largest pivot, when
+/// it lies above the rounding level (`10 p eps`): the block is then nearly, not
+/// exactly, singular in this precision, and its numerical rank is uncertain.
+pub(crate) fn start_basis<T: Scalar>(problem: &Plcp<T>) -> (Vec<Var>, FreeBlockInfo, Option<f64>) {
     let p = problem.free();
     let n = problem.n();
     let mut basis = Vec::with_capacity(p + n);
     let mut info = FreeBlockInfo::default();
+    let mut uncertain = None;
     if p > 0 {
         let f = problem.m().submatrix(0, 0, p, p);
         let lu = f.full_piv_lu();
@@ -48,6 +53,13 @@ pub(crate) fn start_basis<T: Scalar>(problem: &Plcp<T>) -> (Vec<Var>, FreeBlockI
         } else {
             (0..p).filter(|&i| u[(i, i)].abs() > tol).count()
         };
+        if rank < p && largest > T::zero() {
+            let dropped = (rank..p).fold(T::zero(), |a, i| a.max(u[(i, i)].abs()));
+            let rel = (dropped / largest).to_f64();
+            if rel > 10.0 * p as f64 * T::eps().to_f64() {
+                uncertain = Some(rel);
+            }
+        }
         let (prow, _) = lu.P().arrays();
         let (qcol, _) = lu.Q().arrays();
         for &j in &qcol[..rank] {
@@ -64,15 +76,15 @@ pub(crate) fn start_basis<T: Scalar>(problem: &Plcp<T>) -> (Vec<Var>, FreeBlockI
         debug_assert_eq!(rank, numerical_rank(f));
     }
     basis.extend((0..n).map(Var::W));
-    (basis, info)
+    (basis, info, uncertain)
 }
 
 pub(crate) fn solve<T: Scalar>(
     problem: &Plcp<T>,
     settings: &Settings<T>,
 ) -> Result<Path<T>, PlcpError> {
-    let (basis, info) = start_basis(problem);
-    Ok(run_path(
+    let (basis, info, uncertain) = start_basis(problem);
+    let mut path = run_path(
         problem.m(),
         problem.free(),
         &problem.q().to_owned(),
@@ -83,5 +95,17 @@ pub(crate) fn solve<T: Scalar>(
         settings,
         "wolfe",
         info,
-    ))
+    );
+    // a path that stops where a nearly singular free block was taken as singular
+    // may stop because of that choice: say so, never a confident stop
+    if let (Some(rel), false) = (uncertain, path.status.is_success()) {
+        path.message = format!(
+            "the free block is nearly singular in {} (a pivot {rel:.1e} relative to the largest was taken as zero, above the rounding level), so its rank, and with it this stop, is uncertain; try a higher precision. {}",
+            T::NAME,
+            path.message
+        );
+        path.status = Status::IllConditioned;
+        path.ray = None;
+    }
+    Ok(path)
 }
