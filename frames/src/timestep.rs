@@ -43,9 +43,11 @@
 //! impulse would give the heaviest mass, whichever is largest). Events per mode:
 //! [`ModeEventKind::FlowStarted`] and [`ModeEventKind::FlowStopped`], the
 //! latter a deactivation (the rate of a flowing hinge back to zero: system (9)
-//! never lets a rate decrease). The largest relative drop of each mode's rate
-//! below its running peak ([`StepResponse::rate_drop`]) shows decelerating
-//! hinges (`x*_dd < 0`) that have not stopped yet.
+//! never lets a rate decrease), and [`ModeEventKind::FlowDecelerated`] when a
+//! flowing mode's rate first falls below its running peak by more than
+//! `decel_tol` (`x*_dd < 0`, which system (9) forbids: where the path of (9)
+//! reads an unloading, the physical hinge decelerates). The largest relative
+//! drop of each mode's rate below its peak is [`StepResponse::rate_drop`].
 //!
 //! ```
 //! use frames::timestep::{StepOptions, StepState, TimeStepping};
@@ -86,6 +88,9 @@ pub struct StepOptions {
     /// Warm-start each step from the previous basis (default `true`; `false`
     /// solves every step cold, for comparison).
     pub warm: bool,
+    /// Relative drop of a flowing mode's rate below its running peak that is
+    /// reported as [`ModeEventKind::FlowDecelerated`] (default `1e-6`).
+    pub decel_tol: f64,
 }
 
 impl Default for StepOptions {
@@ -96,12 +101,14 @@ impl Default for StepOptions {
             rate_tol: 1e-9,
             record_every: 1,
             warm: true,
+            decel_tol: 1e-6,
         }
     }
 }
 
 impl StepOptions {
-    /// Checks the ranges: `h`, `t_end` positive and finite, `rate_tol` in `(0, 1)`.
+    /// Checks the ranges: `h`, `t_end` positive and finite, `rate_tol` and
+    /// `decel_tol` in `(0, 1)`.
     pub fn validate(&self) -> Result<(), FramesError> {
         if !(self.h.is_finite() && self.h > 0.0) {
             return Err(FramesError::invalid(
@@ -113,6 +120,12 @@ impl StepOptions {
             return Err(FramesError::invalid(
                 "t_end",
                 format!("must be positive and finite, got {}", self.t_end),
+            ));
+        }
+        if !(self.decel_tol > 0.0 && self.decel_tol < 1.0) {
+            return Err(FramesError::invalid(
+                "decel_tol",
+                format!("must be in (0, 1), got {}", self.decel_tol),
             ));
         }
         if !(self.rate_tol > 0.0 && self.rate_tol < 1.0) {
@@ -176,6 +189,10 @@ pub enum ModeEventKind {
     FlowStarted,
     /// The plastic rate of a flowing mode returned to zero: a deactivation.
     FlowStopped,
+    /// The rate of a flowing mode fell below its running peak by more than
+    /// [`StepOptions::decel_tol`] (relative): `x*_dd < 0`, which system (9)
+    /// forbids; reported once per spell of flow.
+    FlowDecelerated,
 }
 
 impl ModeEventKind {
@@ -184,6 +201,7 @@ impl ModeEventKind {
         match self {
             ModeEventKind::FlowStarted => "flow_started",
             ModeEventKind::FlowStopped => "flow_stopped",
+            ModeEventKind::FlowDecelerated => "flow_decelerated",
         }
     }
 }
@@ -268,6 +286,13 @@ impl StepResponse {
         self.events
             .iter()
             .filter(|e| e.kind == ModeEventKind::FlowStarted)
+    }
+    /// `FlowDecelerated` events: flowing hinges whose rate decreases.
+    pub fn decelerations(&self) -> Vec<&ModeEvent> {
+        self.events
+            .iter()
+            .filter(|e| e.kind == ModeEventKind::FlowDecelerated)
+            .collect()
     }
     /// `FlowStopped` events: deactivations.
     pub fn deactivations(&self) -> Vec<&ModeEvent> {
@@ -419,7 +444,7 @@ impl TimeStepping {
     pub fn run(&self, start: &StepState) -> Result<StepResponse, FramesError> {
         let timer = std::time::Instant::now();
         let s = &self.system;
-        let (nb, ns, np) = (s.coordinates.len(), s.forces.len(), s.modes.len());
+        let (nb, np) = (s.coordinates.len(), s.modes.len());
         if start.q.len() != nb || start.v.len() != nb || start.rate.len() != np {
             return Err(FramesError::invalid(
                 "start state",
@@ -460,6 +485,7 @@ impl TimeStepping {
                 .collect()
         };
         let mut peak = state.rate.clone();
+        let mut decelerated = vec![false; np];
         let mut rate_drop = vec![0.0; np];
         let mut out = StepResponse {
             h,
@@ -542,31 +568,39 @@ impl TimeStepping {
                 state.rate[k] = r;
                 state.plastic[k] += h * r;
                 let now = r > tol;
-                if now != flowing[k] {
-                    let mode = s.modes[k];
+                let mode = s.modes[k];
+                let mut event = |kind| {
                     out.events.push(ModeEvent {
                         t: t1,
                         lambda: self.history.lambda(t1),
-                        kind: if now {
-                            ModeEventKind::FlowStarted
-                        } else {
-                            ModeEventKind::FlowStopped
-                        },
+                        kind,
                         mode: k,
                         section: mode.section,
                         sign: mode.sign,
                         y_relative: w[k] / s.capacities[k],
-                    });
+                    })
+                };
+                if now != flowing[k] {
+                    if now {
+                        event(ModeEventKind::FlowStarted);
+                        peak[k] = 0.0;
+                        decelerated[k] = false;
+                    } else {
+                        event(ModeEventKind::FlowStopped);
+                    }
                     flowing[k] = now;
                 }
                 if now {
                     peak[k] = peak[k].max(r);
+                    if !decelerated[k] && r < peak[k] * (1.0 - self.options.decel_tol) {
+                        event(ModeEventKind::FlowDecelerated);
+                        decelerated[k] = true;
+                    }
                 }
                 if peak[k] > 0.0 && (now || peak[k] > tol) {
                     rate_drop[k] = f64::max(rate_drop[k], (peak[k] - r) / peak[k]);
                 }
             }
-            let _ = ns;
             state.t = t1;
             let record = self.options.record_every;
             if n + 1 == steps || (record > 0 && (n + 1) % record == 0) {
