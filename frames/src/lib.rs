@@ -67,3 +67,4 @@ pub use assemble::System;
 pub use error::FramesError;
 pub use model::{Frame, History, Scene};
 pub use solve::SolveOptions;
+pub use timestep::{StepOptions, StepResponse, TimeStepping};
