@@ -69,6 +69,7 @@ use crate::assemble::{Sign, System};
 use crate::error::FramesError;
 use crate::integrate::{integrate, AffinePiece};
 use crate::model::{Component, History};
+use crate::report::format_number;
 use faer::{Col, Mat};
 use plcp::{Method, Plcp, Settings, Status, Var};
 use serde_json::{json, Value};
@@ -819,7 +820,7 @@ impl Continuation {
         let _ = writeln!(
             s,
             "\ntime stepping from Lambda = {} (t = {}) to t = {}: h = {:.3e}, {} steps, {} pivots, {} cold restarts, worst residual {:.1e}, {:.3} s",
-            self.lambda, self.t, r.end.t, r.h, r.steps.len(), r.pivots(), r.cold_restarts, r.worst_residual(), r.seconds
+            format_number(self.lambda), format_number(self.t), format_number(r.end.t), r.h, r.steps.len(), r.pivots(), r.cold_restarts, r.worst_residual(), r.seconds
         );
         if let StepOutcome::Stopped { t, status, message } = &r.outcome {
             let _ = writeln!(

@@ -356,3 +356,60 @@ fn bad_options_and_states_are_errors() {
 fn events_name_the_kind() {
     assert_eq!(ModeEventKind::FlowStopped.as_str(), "flow_stopped");
 }
+
+#[test]
+fn cli_warns_and_continues_by_time_stepping() {
+    let scene = format!(
+        "{}/../scenes/two-storey-sway.toml",
+        env!("CARGO_MANIFEST_DIR")
+    );
+    let frames = || std::process::Command::new(env!("CARGO_BIN_EXE_frames"));
+    let plain = frames().args(["run", &scene, "--json"]).output().unwrap();
+    assert!(plain.status.success());
+    let err = String::from_utf8_lossy(&plain.stderr);
+    assert!(err.contains("NOT VALID beyond it"), "{err}");
+    let doc: serde_json::Value = serde_json::from_slice(&plain.stdout).unwrap();
+    assert!((doc["plcp_valid_up_to_lambda"].as_f64().unwrap() - 6.0).abs() < 1e-9);
+    assert!(doc.get("time_stepping").is_none());
+    let cont = frames()
+        .args([
+            "run",
+            &scene,
+            "--json",
+            "--timestep-after",
+            "--step",
+            "0.01",
+        ])
+        .output()
+        .unwrap();
+    assert!(cont.status.success());
+    let doc: serde_json::Value = serde_json::from_slice(&cont.stdout).unwrap();
+    let ts = &doc["time_stepping"];
+    assert_eq!(ts["status"], "completed");
+    let kinds: Vec<&str> = ts["events"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|e| e["kind"].as_str().unwrap())
+        .collect();
+    assert!(kinds.contains(&"flow_stopped"), "{kinds:?}");
+    // no warning and no time stepping where the path has no deactivation
+    let other = format!(
+        "{}/../scenes/portal-combined.toml",
+        env!("CARGO_MANIFEST_DIR")
+    );
+    let quiet = frames()
+        .args(["run", &other, "--json", "--timestep-after"])
+        .output()
+        .unwrap();
+    assert!(quiet.status.success());
+    assert!(!String::from_utf8_lossy(&quiet.stderr).contains("NOT VALID"));
+    let doc: serde_json::Value = serde_json::from_slice(&quiet.stdout).unwrap();
+    assert!(doc.get("time_stepping").is_none());
+    // a step out of range is bad input
+    let bad = frames()
+        .args(["run", &scene, "--timestep-after", "--step", "0"])
+        .output()
+        .unwrap();
+    assert_eq!(bad.status.code(), Some(2));
+}

@@ -4,6 +4,7 @@
 //! frame) ends with exit code 2 and one line naming what is wrong.
 
 use clap::{Parser, Subcommand};
+use frames::report::format_number;
 use frames::{Analysis, AnalysisOptions, FramesError, Scene, SolveOptions};
 use plcp::{Method, Precision};
 use std::io::Write;
@@ -106,7 +107,9 @@ fn run(cli: Cli) -> Result<(), FramesError> {
             if let Some((lambda, t)) = valid {
                 let _ = writeln!(
                     std::io::stderr(),
-                    "WARNING: a hinge unloads at Lambda = {lambda} (t = {t}): the PLCP response is NOT VALID beyond it{}",
+                    "WARNING: a hinge unloads at Lambda = {} (t = {}): the PLCP response is NOT VALID beyond it{}",
+                    format_number(lambda),
+                    format_number(t),
                     if timestep_after {
                         "; continuing from there by time stepping"
                     } else {
@@ -138,7 +141,9 @@ fn run(cli: Cli) -> Result<(), FramesError> {
                 out(&analysis.to_text());
                 if let Some((lambda, t)) = valid {
                     out(&format!(
-                        "\nWARNING: the PLCP response is NOT VALID beyond Lambda = {lambda} (t = {t}): a flowing hinge unloads there{}\n",
+                        "\nWARNING: the PLCP response is NOT VALID beyond Lambda = {} (t = {}): a flowing hinge unloads there{}\n",
+                        format_number(lambda),
+                        format_number(t),
                         if analysis.time_stepping.is_some() { "" } else { "; --timestep-after continues by time stepping" }
                     ));
                 }
