@@ -29,7 +29,15 @@
 //! drive): the rigid phase is well posed. `X` is not unique while the frame is
 //! partly rigid; `v` is unique on the coordinates with mass.
 //!
-//! Consecutive steps share the matrix (fixed `h`), so step `n + 1` is the plcp
+//! plcp solves it in impulse form: row (a) times `h`, the impulse `P = h X`
+//! and `h y` as unknowns. The matrix is then exactly system (9)'s, whatever
+//! `h` (with `M_q / h` in it, `h = 1e-5` of the response time gave step
+//! residuals of 1e-8 and spurious flow in the rigid phase of indeterminate
+//! frames), and the right-hand side `(M_q v_n + h lambda_n a_o, 0, h X*)` is
+//! divided by its largest entry (the LCP is homogeneous in it) and the answer
+//! scaled back.
+//!
+//! All steps share the matrix, so step `n + 1` is the plcp
 //! path from step `n`'s right-hand side (`L = 0`) to its own (`L = 1`),
 //! `d = q_{n+1} - q_n`, started from step `n`'s final basis
 //! ([`plcp::Settings::warm_basis`]): it pivots only where the set of flowing
@@ -371,7 +379,7 @@ pub struct TimeStepping {
     options: StepOptions,
     h: f64,
     steps: usize,
-    /// The step matrix (`M_q / h` in place of `M_q`).
+    /// The step matrix: system (9)'s (impulse form).
     m: Mat<f64>,
 }
 
@@ -389,10 +397,7 @@ impl TimeStepping {
     fn with_span(system: &System, history: &History, options: &StepOptions, span: f64) -> Self {
         let steps = ((span / options.h).round() as usize).max(1);
         let h = span / steps as f64;
-        let (mut m, _, _) = system.blocks();
-        for j in 0..system.coordinates.len() {
-            m[(j, j)] = -system.mass[j] / h;
-        }
+        let (m, _, _) = system.blocks();
         Self {
             system: system.clone(),
             history: history.clone(),
@@ -408,18 +413,19 @@ impl TimeStepping {
         self.h
     }
 
-    /// The right-hand side of the step from `v` over `[t, t + h]`.
+    /// The right-hand side of the step from `v` over `[t, t + h]`, in impulse
+    /// form: `(M_q v_n + h lambda_n a_o, 0, h X*)`.
     fn rhs(&self, v: &[f64], t: f64) -> Col<f64> {
         let s = &self.system;
         let (nb, ns) = (s.coordinates.len(), s.forces.len());
         let lambda = mean_load(&self.history, t, t + self.h);
         Col::from_fn(self.m.nrows(), |i| {
             if i < nb {
-                s.mass[i] * v[i] / self.h + lambda * s.load[i]
+                s.mass[i] * v[i] + self.h * lambda * s.load[i]
             } else if i < nb + ns {
                 0.0
             } else {
-                s.capacities[i - nb - ns]
+                self.h * s.capacities[i - nb - ns]
             }
         })
     }
@@ -511,12 +517,16 @@ impl TimeStepping {
                 start.t + (n + 1) as f64 * h
             };
             let rhs = me.rhs(&state.v, t0);
+            // the step LCP is homogeneous in its right-hand side: solved for
+            // rhs / |rhs| (values of order one whatever h), answer scaled back
+            let norm = (0..rhs.nrows()).fold(f64::MIN_POSITIVE, |a, i| a.max(rhs[i].abs()));
             let mut warm_used = false;
             let mut pivots = 0;
             let mut path = None;
             if let (true, Some((q_old, basis))) = (self.options.warm, &prev) {
-                let d = Col::from_fn(rhs.nrows(), |i| rhs[i] - q_old[i]);
-                let p = me.solve(q_old, &d, 1.0, Some(basis.clone()))?;
+                let q0 = Col::from_fn(rhs.nrows(), |i| q_old[i] / norm);
+                let d = Col::from_fn(rhs.nrows(), |i| (rhs[i] - q_old[i]) / norm);
+                let p = me.solve(&q0, &d, 1.0, Some(basis.clone()))?;
                 pivots += p.info.pivots;
                 if p.status == Status::Reached && p.info.warm_start {
                     warm_used = true;
@@ -529,7 +539,8 @@ impl TimeStepping {
                 Some(p) => p,
                 None => {
                     let zero = Col::<f64>::zeros(rhs.nrows());
-                    let p = me.solve(&rhs, &zero, 0.0, None)?;
+                    let q0 = Col::from_fn(rhs.nrows(), |i| rhs[i] / norm);
+                    let p = me.solve(&q0, &zero, 0.0, None)?;
                     pivots += p.info.pivots;
                     p
                 }
@@ -550,7 +561,9 @@ impl TimeStepping {
                 };
                 break;
             }
-            let (u, z, w) = (&path.end.u, &path.end.z, &path.end.w);
+            let back = |c: &Col<f64>| -> Vec<f64> { c.iter().map(|x| x * norm).collect() };
+            // u = (v, h X), z = xdot, w = h y
+            let (u, z, w) = (back(&path.end.u), back(&path.end.z), back(&path.end.w));
             let lambda = mean_load(&self.history, t0, t1);
             let scale = (0..nb)
                 .map(|j| u[j].abs())
@@ -578,7 +591,7 @@ impl TimeStepping {
                         mode: k,
                         section: mode.section,
                         sign: mode.sign,
-                        y_relative: w[k] / s.capacities[k],
+                        y_relative: w[k] / (h * s.capacities[k]),
                     })
                 };
                 if now != flowing[k] {
