@@ -413,3 +413,25 @@ fn cli_warns_and_continues_by_time_stepping() {
         .unwrap();
     assert_eq!(bad.status.code(), Some(2));
 }
+
+#[test]
+fn tiny_steps_keep_the_rigid_phase_exact() {
+    // two-storey collapses at Lambda = 4, t = ln 2 = 0.69: 10^4 steps of 5e-5
+    // up to t = 0.5 (h / T = 1e-5) must see no motion and no flow
+    let a = analysis("two-storey");
+    let r = run(&a, 5e-5, 0.5);
+    assert_eq!(r.steps.len(), 10_000);
+    assert!(
+        r.events.is_empty(),
+        "{:?}",
+        &r.events[..r.events.len().min(3)]
+    );
+    let moved = r
+        .end
+        .q
+        .iter()
+        .chain(&r.end.v)
+        .fold(0.0f64, |m, x| m.max(x.abs()));
+    assert!(moved < 1e-12, "{moved}");
+    assert!(r.worst_residual() < 1e-13, "{}", r.worst_residual());
+}
