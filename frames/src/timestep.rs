@@ -573,9 +573,9 @@ impl TimeStepping {
                     f64::max,
                 );
             let tol = self.options.rate_tol * scale;
-            for j in 0..nb {
-                state.v[j] = u[j];
-                state.q[j] += h * u[j];
+            state.v.copy_from_slice(&u[..nb]);
+            for (q, v) in state.q.iter_mut().zip(&state.v) {
+                *q += h * v;
             }
             for k in 0..np {
                 let r = z[k].max(0.0);
