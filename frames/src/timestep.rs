@@ -85,7 +85,7 @@ use serde_json::{json, Value};
 /// Options of a time-stepping run.
 #[derive(Clone, Debug, PartialEq)]
 pub struct StepOptions {
-    /// Step size (adjusted down so that the steps end exactly at `t_end`).
+    /// Step size (adjusted so that a whole number of steps ends exactly at `t_end`).
     pub h: f64,
     /// End time.
     pub t_end: f64,
