@@ -6,6 +6,7 @@ use crate::hinge::{self, Reading};
 use crate::model::Scene;
 use crate::response::{self, Response};
 use crate::solve::{self, Solution, SolveOptions};
+use crate::timestep::{Continuation, StepOptions};
 
 /// Options of an analysis.
 #[derive(Clone, Debug, PartialEq)]
@@ -50,6 +51,10 @@ pub struct Analysis {
     pub response: Response,
     /// Set when the path was re-solved in a higher precision, and why.
     pub note: Option<String>,
+    /// The response by time stepping beyond the path's first deactivation,
+    /// where the PLCP response stops being valid (see
+    /// [`Analysis::continue_by_time_stepping`]; `None` until asked for).
+    pub time_stepping: Option<Continuation>,
 }
 
 impl Analysis {
@@ -133,6 +138,45 @@ impl Analysis {
             reading,
             response,
             note,
+            time_stepping: None,
         })
+    }
+
+    /// Where the path shows a deactivation, the PLCP response is not valid
+    /// beyond its `Lambda`: continues from the exact PLCP state there by time
+    /// stepping ([`crate::timestep`]) up to the end of the time response, with
+    /// steps of `h_relative` times that end time, and keeps it in
+    /// [`Analysis::time_stepping`]. `Ok(false)` (nothing done) when the path has
+    /// no deactivation before the end time.
+    ///
+    /// ```
+    /// let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../scenes/two-storey-sway.toml");
+    /// let scene = frames::Scene::from_file(path).unwrap();
+    /// let mut a = frames::Analysis::run(scene, &frames::AnalysisOptions::default()).unwrap();
+    /// assert!(a.continue_by_time_stepping(1e-3).unwrap());
+    /// let c = a.time_stepping.as_ref().unwrap();
+    /// assert!((c.lambda - 6.0).abs() < 1e-9);
+    /// // the column-top hinges the path reads as unloading stop flowing
+    /// assert_eq!(c.run.deactivations().len(), 2);
+    /// ```
+    pub fn continue_by_time_stepping(&mut self, h_relative: f64) -> Result<bool, FramesError> {
+        if !(h_relative > 0.0 && h_relative < 1.0) {
+            return Err(FramesError::invalid(
+                "time-stepping step",
+                format!("must be a fraction of the response time in (0, 1), got {h_relative}"),
+            ));
+        }
+        let t_end = self.response.time.times.last().copied().unwrap_or(0.0);
+        if t_end <= 0.0 {
+            return Ok(false);
+        }
+        let options = StepOptions {
+            h: h_relative * t_end,
+            t_end,
+            record_every: 0,
+            ..StepOptions::default()
+        };
+        self.time_stepping = Continuation::after_deactivation(self, &options)?;
+        Ok(self.time_stepping.is_some())
     }
 }

@@ -30,7 +30,9 @@
 //! hinge events ([`hinge`], with [`stress`] to tell a real deactivation from
 //! a choice among non-unique stress states), builds the response ([`response`],
 //! [`integrate`]) and reports it as text, JSON ([`report`]) and plots
-//! ([`plot`]).
+//! ([`plot`]). [`timestep`] integrates the same frame independently, one
+//! velocity-level LCP per step, where hinges may unload: it checks the path
+//! and continues the response where the path stops being valid.
 //!
 //! ```
 //! let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../scenes/cantilever.toml");
@@ -60,9 +62,11 @@ pub mod report;
 pub mod response;
 pub mod solve;
 pub mod stress;
+pub mod timestep;
 
 pub use analysis::{Analysis, AnalysisOptions};
 pub use assemble::System;
 pub use error::FramesError;
 pub use model::{Frame, History, Scene};
 pub use solve::SolveOptions;
+pub use timestep::{StepOptions, StepResponse, TimeStepping};

@@ -4,6 +4,7 @@
 //! frame) ends with exit code 2 and one line naming what is wrong.
 
 use clap::{Parser, Subcommand};
+use frames::report::format_number;
 use frames::{Analysis, AnalysisOptions, FramesError, Scene, SolveOptions};
 use plcp::{Method, Precision};
 use std::io::Write;
@@ -46,6 +47,13 @@ enum Command {
         /// End time of the time response (default: Lambda reaches 1.5 x the last critical value).
         #[arg(long, value_name = "T")]
         t_end: Option<f64>,
+        /// Where the PLCP path shows a deactivation (its response is not valid
+        /// beyond that Lambda), continue from there by time stepping.
+        #[arg(long)]
+        timestep_after: bool,
+        /// Time step of --timestep-after, as a fraction of the response time.
+        #[arg(long, value_name = "H", default_value_t = 1e-3)]
+        step: f64,
     },
     /// Print the mixed PLCP of system (9) as plcp's JSON input.
     Export {
@@ -80,6 +88,8 @@ fn run(cli: Cli) -> Result<(), FramesError> {
             precision,
             lambda_max,
             t_end,
+            timestep_after,
+            step,
         } => {
             let scene = Scene::from_file(&scene)?;
             let options = AnalysisOptions {
@@ -92,7 +102,24 @@ fn run(cli: Cli) -> Result<(), FramesError> {
                 escalate: precision.is_none(),
                 ..AnalysisOptions::default()
             };
-            let analysis = Analysis::run(scene, &options)?;
+            let mut analysis = Analysis::run(scene, &options)?;
+            let valid = frames::timestep::plcp_valid_until(&analysis);
+            if let Some((lambda, t)) = valid {
+                let _ = writeln!(
+                    std::io::stderr(),
+                    "WARNING: a hinge unloads at Lambda = {} (t = {}): the PLCP response is NOT VALID beyond it{}",
+                    format_number(lambda),
+                    format_number(t),
+                    if timestep_after {
+                        "; continuing from there by time stepping"
+                    } else {
+                        " (rerun with --timestep-after for the time-stepping response from there on)"
+                    }
+                );
+                if timestep_after {
+                    analysis.continue_by_time_stepping(step)?;
+                }
+            }
             if let Some(dir) = plots {
                 let files = frames::plot::write_all(&analysis, &dir)?;
                 if !json {
@@ -102,11 +129,27 @@ fn run(cli: Cli) -> Result<(), FramesError> {
                 }
             }
             if json {
-                out(
-                    &(serde_json::to_string_pretty(&analysis.to_json()).unwrap_or_default() + "\n"),
-                );
+                let mut doc = analysis.to_json();
+                if let (Some((lambda, _)), Some(obj)) = (valid, doc.as_object_mut()) {
+                    obj.insert("plcp_valid_up_to_lambda".into(), lambda.into());
+                    if let Some(c) = &analysis.time_stepping {
+                        obj.insert("time_stepping".into(), c.to_json(&analysis));
+                    }
+                }
+                out(&(serde_json::to_string_pretty(&doc).unwrap_or_default() + "\n"));
             } else {
                 out(&analysis.to_text());
+                if let Some((lambda, t)) = valid {
+                    out(&format!(
+                        "\nWARNING: the PLCP response is NOT VALID beyond Lambda = {} (t = {}): a flowing hinge unloads there{}\n",
+                        format_number(lambda),
+                        format_number(t),
+                        if analysis.time_stepping.is_some() { "" } else { "; --timestep-after continues by time stepping" }
+                    ));
+                }
+                if let Some(c) = &analysis.time_stepping {
+                    out(&c.to_text(&analysis));
+                }
             }
             Ok(())
         }
