@@ -653,13 +653,10 @@ impl<'a, T: Scalar> Engine<'a, T> {
                     None => T::zero(),
                 },
             };
-            // L driving itself has rate one exactly (no tolerance: a column with
-            // large free-variable entries must not make it look stalled)
-            let rate_tol = if driver == Var::Lambda {
-                T::zero()
-            } else {
-                self.noise * colmax.max(T::one())
-            };
+            // (L driving itself has rate one; a column whose noise level reaches
+            // that (f32 at condition ~1e5) is not trusted to rise either: its
+            // ratio test could not see a block, so it ends as a stop)
+            let rate_tol = self.noise * colmax.max(T::one());
             let rising = rate > rate_tol;
             let moving = rate.abs() > rate_tol;
             if !(0..self.dim).all(|i| col[i].is_finite() && self.x[i].is_finite()) {
