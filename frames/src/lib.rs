@@ -60,6 +60,7 @@ pub mod report;
 pub mod response;
 pub mod solve;
 pub mod stress;
+pub mod yield_surface;
 
 pub use analysis::{Analysis, AnalysisOptions};
 pub use assemble::System;
