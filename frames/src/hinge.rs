@@ -292,11 +292,24 @@ fn restore_yield(
 pub fn read(frame: &Frame, system: &System, pieces: &[Piece], tolerance: f64) -> Reading {
     let (groups, group_of) = groups(frame, system);
     let ns = system.sections.len();
-    let zscale = pieces
+    // The scale of x*_dd that tells "accelerating" from round-off, per piece:
+    // the largest |x*_dd| on the piece and its neighbours (x*_dd grows with
+    // Lambda, so one scale for a path whose breakpoints span decades would
+    // hide the first hinges), never below 1e-9 of the largest on the path.
+    let zmax: Vec<f64> = pieces
         .iter()
-        .flat_map(|p| p.z(p.representative()))
-        .fold(0.0f64, |a, v| a.max(v.abs()))
-        .max(f64::MIN_POSITIVE);
+        .map(|p| {
+            p.z(p.representative())
+                .iter()
+                .fold(0.0f64, |a, v| a.max(v.abs()))
+        })
+        .collect();
+    let global = zmax.iter().fold(f64::MIN_POSITIVE, |a, &v| a.max(v));
+    let zscale_of = |i: usize| -> f64 {
+        let lo = i.saturating_sub(1);
+        let hi = (i + 1).min(zmax.len() - 1);
+        zmax[lo..=hi].iter().fold(1e-9 * global, |a, &v| a.max(v))
+    };
     // Pieces shorter than the tolerance (f32 round-off, degenerate steps) are
     // skipped: their neighbours meet at one breakpoint.
     let mut view: Vec<(usize, f64, f64)> = Vec::new();
@@ -322,6 +335,7 @@ pub fn read(frame: &Frame, system: &System, pieces: &[Piece], tolerance: f64) ->
             let p = &pieces[i];
             let l = p.representative();
             let (z, w) = (p.z(l), p.w(l));
+            let zscale = zscale_of(i);
             let mut yield_mode: Vec<Option<usize>> = vec![None; ns];
             let mut acc_mode: Vec<Option<usize>> = vec![None; ns];
             for (k, mode) in system.modes.iter().enumerate() {

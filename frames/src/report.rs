@@ -606,6 +606,9 @@ impl Analysis {
                     parts.push(format!("{what}: {}", v.join(", ")));
                 }
             }
+            if parts.is_empty() {
+                parts.push("no hinge event: the accelerations change slope (flow moves to another facet of a yield polygon, or a pivot among the flowing hinges)".into());
+            }
             let note = if i == 0 {
                 "  [static collapse load]"
             } else {
