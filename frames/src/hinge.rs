@@ -13,7 +13,16 @@
 //! reported, never hidden.
 //!
 //! States are read on each piece at an interior point, with a relative
-//! tolerance suited to the working precision.
+//! tolerance suited to the working precision (for `x*_dd`, relative to the
+//! largest `x*_dd` on the piece and its neighbours).
+//!
+//! **Yield polygons.** A section with an interaction (bending-torsion,
+//! bending-axial) has one yield mode per facet of its polygon. It is at yield
+//! when any facet is, and accelerates when any facet's `x*_dd` is positive;
+//! events name the facet (the nearest to yield, the fastest). The flow moving
+//! from one facet to the next is not an event of the hinge (it shows as a
+//! breakpoint without events); leaving every facet after having flowed is
+//! `unloaded`.
 //!
 //! **Tied sections.** Where exactly two sections meet at a node whose rotation
 //! is free, without rotary inertia or applied moment, node equilibrium makes
@@ -342,14 +351,18 @@ pub fn read(frame: &Frame, system: &System, pieces: &[Piece], tolerance: f64) ->
                 let s = mode.section;
                 // at a vertex of a polygon two facets are at yield: keep the
                 // one nearer yield, and the faster-accelerating one
-                if w[k] <= tolerance * system.capacities[k]
-                    && yield_mode[s].map_or(true, |j| {
-                        w[k] / system.capacities[k] < w[j] / system.capacities[j]
-                    })
-                {
+                let nearer = match yield_mode[s] {
+                    None => true,
+                    Some(j) => w[k] / system.capacities[k] < w[j] / system.capacities[j],
+                };
+                if w[k] <= tolerance * system.capacities[k] && nearer {
                     yield_mode[s] = Some(k);
                 }
-                if z[k] > tolerance * zscale && acc_mode[s].map_or(true, |j| z[k] > z[j]) {
+                let faster = match acc_mode[s] {
+                    None => true,
+                    Some(j) => z[k] > z[j],
+                };
+                if z[k] > tolerance * zscale && faster {
                     acc_mode[s] = Some(k);
                 }
             }

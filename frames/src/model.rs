@@ -1,10 +1,12 @@
-//! The scene: a planar frame (nodes, members, supports, masses, loads) and the
+//! The scene: a planar frame or a grillage (nodes, members, arcs, supports,
+//! masses, loads, yield polygons) and the
 //! load history `lambda(t)`, read from TOML with errors that name file, line and key.
 //!
 //! The keys of a scene file (the contract; every other key is an error):
 //!
 //! ```toml
 //! title = "optional text"
+//! model = "planar"        # the default; or "grillage" (see Models below)
 //!
 //! [[node]]
 //! id = "A"
@@ -18,10 +20,13 @@
 //! plastic_moment = 1.0
 //! elements = 4            # optional: n equal elements, new nodes "AB.1" .. "AB.3"
 //! mass_per_length = 1.0   # optional: lumped, mu*h/2 to each element end
+//! # plastic_torque = 0.9  # grillage: required, Tp
+//! # plastic_axial = 4.0   # planar, optional: Np, the bending-axial interaction
+//! # facets = 16           # with either: facets of the yield polygon
 //!
 //! [[support]]
 //! node = "A"
-//! fix = ["x", "y", "rz"]
+//! fix = ["x", "y", "rz"]  # grillage: any of "z", "rx", "ry"
 //!
 //! [[mass]]
 //! node = "B"
@@ -30,13 +35,46 @@
 //!
 //! [[load]]
 //! node = "B"
-//! fy = 1.0                # the pattern a_o: fx, fy, mz (each optional)
+//! fy = 1.0                # the pattern a_o: fx, fy, mz (each optional); grillage: fz, mx, my
+//!
+//! [[arc]]                 # a curved member, subdivided into straight elements
+//! id = "Q"
+//! centre = [0.0, 0.0]
+//! radius = 1.0
+//! start_angle = 0.0       # degrees, counter-clockwise from +x
+//! end_angle = 90.0        # the sweep is end - start (0 < |sweep| < 360)
+//! elements = 8            # nodes "Q.1" .. "Q.7" on the arc (chords between them)
+//! from = "A"              # optional: a [[node]] at the start point, else "Q.0" is generated
+//! to = "C"                # optional: a [[node]] at the end point, else "Q.8"
+//! plastic_moment = 1.0    # and plastic_torque / plastic_axial / facets / mass_per_length as a member
 //!
 //! [history]               # lambda(t); default: ramp with rate 1
 //! kind = "ramp"
 //! rate = 1.0
 //! # kind = "table",      points = [[0.0, 0.0], [1.0, 2.0], [3.0, 2.5]]  (t, lambda), held after the last
 //! # kind = "saturating", peak = 5.0, tau = 0.5                         lambda = peak (1 - exp(-t/tau))
+//! ```
+//!
+//! **Models.** `model = "planar"` (the default: every file without the key is
+//! planar, as before) or `model = "grillage"`. In a grillage the frame lies in
+//! the x-y plane; nodes move in z and rotate about x and y (right-handed):
+//! supports fix any of `"z"`, `"rx"`, `"ry"`, loads are `fz`, `mx`, `my`, `m`
+//! of `[[mass]]` acts in z and `j` about both x and y, and JSON accelerations
+//! use the component names `"z"`, `"rx"`, `"ry"`. Keys of the other model are
+//! errors.
+//!
+//! **Yield polygons.** Every grillage member needs `plastic_torque = Tp`; its
+//! sections yield on `(M/Mp)^2 + (T/Tp)^2 <= 1`. A planar member may give
+//! `plastic_axial = Np`: its sections then yield on the thin-walled pipe's
+//! `|M/Mp| <= cos(pi N / 2 Np)`, and its axial force is a yield force instead
+//! of a reaction. Either curve is replaced by an INSCRIBED polygon (vertices
+//! on the curve, the axis points among them; see [`crate::yield_surface`]) of
+//! `facets = k` facets, k a multiple of 4, set on the member (or arc) or for
+//! the whole scene in a top-level table:
+//!
+//! ```toml
+//! [yield]
+//! facets = 16             # the default when neither says
 //! ```
 //!
 //! ```

@@ -115,7 +115,7 @@ pub struct Polygon {
 impl Polygon {
     /// The polygon of `k` facets; `k` must be a multiple of 4, from 4 to 4096.
     pub fn new(curve: Curve, k: usize) -> Result<Polygon, String> {
-        if k < 4 || k % 4 != 0 || k > 4096 {
+        if !(4..=4096).contains(&k) || k & 3 != 0 {
             return Err(format!(
                 "the number of facets must be a multiple of 4 from 4 to 4096 (4, 8, 16, 32, ...), got {k}"
             ));
