@@ -464,6 +464,73 @@ impl Analysis {
         Value::Object(out)
     }
 
+    /// At a breakpoint, the facets of yield polygons of flowing sections that
+    /// start or stop accelerating while their section keeps flowing (the flow
+    /// moving across the polygon; no event of the hinge itself), e.g.
+    /// `A (AB from) @124 stops, @101 starts`. A facet that stops keeps its rate
+    /// in system (9), whose path cannot let a rate decrease.
+    fn facet_changes(&self, lambda: f64) -> Vec<String> {
+        let pieces = &self.solution.pieces;
+        let ivs = &self.reading.intervals;
+        let Some(k) = ivs.iter().position(|i| i.lambda_from == lambda && !i.rigid) else {
+            return Vec::new();
+        };
+        if k == 0 || ivs[k - 1].rigid {
+            return Vec::new();
+        }
+        let acc = |iv: &crate::hinge::Interval| -> Vec<bool> {
+            let p = &pieces[iv.piece];
+            let l = if iv.lambda_to.is_finite() {
+                0.5 * (iv.lambda_from + iv.lambda_to)
+            } else {
+                iv.lambda_from + iv.lambda_from.abs().max(1.0)
+            };
+            let z = p.z(l);
+            let scale = z.iter().fold(f64::MIN_POSITIVE, |m, v| m.max(v.abs()));
+            z.iter()
+                .map(|&v| v > self.solution.tolerance * scale)
+                .collect()
+        };
+        let (before, after) = (acc(&ivs[k - 1]), acc(&ivs[k]));
+        let modes = &self.system.modes;
+        let mut out = Vec::new();
+        for sec in 0..self.system.sections.len() {
+            let ks: Vec<usize> = (0..modes.len())
+                .filter(|&m| modes[m].section == sec && modes[m].facet.is_some())
+                .collect();
+            let was = ks.iter().any(|&m| before[m]);
+            let is = ks.iter().any(|&m| after[m]);
+            if !(was && is) {
+                continue;
+            }
+            let stops: Vec<String> = ks
+                .iter()
+                .filter(|&&m| before[m] && !after[m])
+                .map(|&m| self.mode_tag(m, modes[m].sign))
+                .collect();
+            let starts: Vec<String> = ks
+                .iter()
+                .filter(|&&m| !before[m] && after[m])
+                .map(|&m| self.mode_tag(m, modes[m].sign))
+                .collect();
+            if stops.is_empty() && starts.is_empty() {
+                continue;
+            }
+            let Some(g) = self.reading.group_of[sec] else {
+                continue;
+            };
+            let mut what = Vec::new();
+            if !stops.is_empty() {
+                what.push(format!("{} stops", stops.join(" ")));
+            }
+            if !starts.is_empty() {
+                what.push(format!("{} starts", starts.join(" ")));
+            }
+            out.push(format!("{} {}", self.group_label(g), what.join(", ")));
+        }
+        out
+    }
+
     fn group_label(&self, g: usize) -> String {
         let fr = &self.scene.frame;
         let grp = &self.reading.groups[g];
@@ -606,8 +673,12 @@ impl Analysis {
                     parts.push(format!("{what}: {}", v.join(", ")));
                 }
             }
+            let facets = self.facet_changes(b.lambda);
+            if !facets.is_empty() {
+                parts.push(format!("facets: {}", facets.join(", ")));
+            }
             if parts.is_empty() {
-                parts.push("no hinge event: the accelerations change slope (flow moves to another facet of a yield polygon, or a pivot among the flowing hinges)".into());
+                parts.push("no hinge event: the accelerations change slope (a pivot among the flowing hinges)".into());
             }
             let note = if i == 0 {
                 "  [static collapse load]"
@@ -615,6 +686,14 @@ impl Analysis {
                 ""
             };
             let _ = writeln!(s, "{:>15}   {}{}", fmt_g(b.lambda), parts.join("; "), note);
+        }
+        let facet_stops = self.reading.breakpoints.iter().any(|b| {
+            self.facet_changes(b.lambda)
+                .iter()
+                .any(|f| f.contains(" stops"))
+        });
+        if facet_stops {
+            let _ = writeln!(s, "NOTE: a facet that stops accelerating while its hinge flows on keeps its rate on the path of (9), which cannot let a rate decrease; the true flow may turn by decelerating it (a deactivation of that facet: check by time stepping, see examples/pipe_whip.rs)");
         }
         let dea = self.reading.deactivations();
         if !dea.is_empty() {
