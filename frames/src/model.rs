@@ -69,7 +69,7 @@
 //! `|M/Mp| <= cos(pi N / 2 Np)`, and its axial force is a yield force instead
 //! of a reaction. Either curve is replaced by an INSCRIBED polygon (vertices
 //! on the curve, the axis points among them; see [`crate::yield_surface`]) of
-//! `facets = k` facets, k a multiple of 4, set on the member (or arc) or for
+//! `facets = k` facets, k a multiple of 4 up to 256, set on the member (or arc) or for
 //! the whole scene in a top-level table:
 //!
 //! ```toml
@@ -532,7 +532,7 @@ impl Ctx<'_> {
             Err(_) => self.err(
                 v.span(),
                 key,
-                format!("must be a multiple of 4 from 4 to 4096 (4, 8, 16, 32, ...), got {k}"),
+                format!("must be a multiple of 4 from 4 to 256 (4, 8, 16, 32, ...), got {k}"),
             ),
         }
     }

@@ -113,11 +113,12 @@ pub struct Polygon {
 }
 
 impl Polygon {
-    /// The polygon of `k` facets; `k` must be a multiple of 4, from 4 to 4096.
+    /// The polygon of `k` facets; `k` must be a multiple of 4, from 4 to 256
+    /// (every facet is a complementary variable of the PLCP, held densely).
     pub fn new(curve: Curve, k: usize) -> Result<Polygon, String> {
-        if !(4..=4096).contains(&k) || k & 3 != 0 {
+        if !(4..=256).contains(&k) || k & 3 != 0 {
             return Err(format!(
-                "the number of facets must be a multiple of 4 from 4 to 4096 (4, 8, 16, 32, ...), got {k}"
+                "the number of facets must be a multiple of 4 from 4 to 256 (4, 8, 16, 32, ...), got {k}"
             ));
         }
         let q = k / 4;
