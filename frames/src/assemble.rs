@@ -2,8 +2,8 @@
 //! sections and yield modes, the blocks `M_q`, `A`, `T N`, `X*`, `a_o`, and the
 //! mixed PLCP that plcp solves.
 //!
-//! Kinematics of an element from node `a` to node `b` (length `h`, direction
-//! `(c, s)`), with nodal coordinates `(u_x, u_y, theta)`:
+//! **Planar members.** Kinematics of an element from node `a` to node `b`
+//! (length `h`, direction `(c, s)`), with nodal coordinates `(u_x, u_y, theta)`:
 //!
 //! ```text
 //! chord rotation      psi = (-s (u_xb - u_xa) + c (u_yb - u_ya)) / h
@@ -17,26 +17,58 @@
 //! section's positive yield mode is a sagging hinge (`m = +Mp`), its negative
 //! mode a hogging one (`m = -Mp`): `N = [1, -1]` per section.
 //!
-//! **Axial rigidity.** Members are inextensible. The axial force `N` of every
-//! element is kept as a member force (a free variable of the PLCP) whose dual
-//! deformation, the elongation rate, must vanish: its row of `A q = T N x*`
-//! has no yield mode. Nothing is eliminated, so the kinematics stay exact for
-//! any geometry; the price is `s` larger by one per element, and an
-//! indeterminate free block for frames whose axial forces are not statically
-//! determined.
+//! **Grillage members** (`model = "grillage"`): the frame lies in the x-y
+//! plane, nodal coordinates `(w, r_x, r_y)` (translation along z, right-handed
+//! rotations about x and y). In the element's axes (`x'` along the member,
+//! `y'` the member direction turned 90 degrees counter-clockwise, `z` common)
+//! a nodal rotation has the twist `phi = c r_x + s r_y` (about `x'`) and the
+//! bending rotation `theta = -s r_x + c r_y` (about `y'`; a positive `theta`
+//! tilts the axis down, so the chord's is `psi = -(w_b - w_a) / h`):
+//!
+//! ```text
+//! section at a:       -(theta_a - psi)      dual to the bending moment m_a
+//! section at b:         theta_b - psi       dual to the bending moment m_b
+//! twist               phi_b - phi_a         dual to the torque T (constant along the element)
+//! ```
+//!
+//! **Yield modes.** A section of a member without interaction has the two
+//! modes `+-m <= Mp`. A section of a member with an interaction (every
+//! grillage member; a planar member with `plastic_axial`) has one mode per
+//! facet of the inscribed polygon of [`crate::yield_surface`] in the plane
+//! `(m / Mp, F / Fp)`, `F` the element's torque or axial force. `F` is one
+//! member force shared by the element's two end sections, and it enters the
+//! yield condition of both: in `T N` its row carries the facet normals' `F`
+//! components of the modes of both sections. By the flow rule the element's
+//! twist (or elongation) is the sum of the plastic twists of its two end
+//! hinges, each following the normal of the facet it flows on; a twist with
+//! no hinge at either end is impossible (the element is rigid between its
+//! critical sections).
+//!
+//! **Axial rigidity.** Planar members without `plastic_axial` are
+//! inextensible. The axial force `N` of every element is kept as a member
+//! force (a free variable of the PLCP) whose dual deformation, the elongation
+//! rate, must vanish: its row of `A q = T N x*` has no yield mode. Nothing is
+//! eliminated, so the kinematics stay exact for any geometry.
 //!
 //! **Tied sections.** Where two sections meet at a node with a free,
-//! massless, unloaded rotation, only the weaker one carries yield modes (see
-//! `rigid_sections`): one physical hinge, one pair of yield modes.
+//! massless, unloaded rotation and their forces are equal by node equilibrium
+//! (planar members without interaction; collinear grillage elements of equal
+//! strength), only the weaker one carries yield modes (see `rigid_sections`):
+//! one physical hinge, one set of yield modes.
 //!
-//! **What is left out.** Supported coordinates, and every part of the system
-//! that carries no load and is decoupled from the loaded part (found as the
+//! **What is left out.** By construction, the other model's components: a
+//! planar scene has no out-of-plane coordinates and forces, a grillage none in
+//! plane. Then supported coordinates, and every part of the system that
+//! carries no load and is decoupled from the loaded part (found as the
 //! connected components of the sparsity graph of system (9)): its solution is
-//! zero for every `Lambda`. The straight, transversely loaded cantilever loses
-//! its axial motion this way and becomes statically determinate.
+//! zero for every `Lambda`. The straight, transversely loaded planar
+//! cantilever loses its axial motion this way and becomes statically
+//! determinate. [`System::assemble_full`] keeps everything but the supported
+//! coordinates (for checks).
 
 use crate::kernel::null_space;
-use crate::model::{Component, Frame};
+use crate::model::{Component, Frame, Model};
+use crate::yield_surface::Polygon;
 use faer::{Col, Mat};
 use plcp::{Plcp, PlcpError, Scalar};
 
@@ -98,8 +130,24 @@ pub struct CriticalSection {
 pub struct YieldMode {
     /// Index into [`System::sections`].
     pub section: usize,
-    /// Sagging or hogging.
+    /// Sagging or hogging (for a facet of a polygon: the sign of its normal's
+    /// bending component, never zero).
     pub sign: Sign,
+    /// For a section with an interaction: the facet of its polygon, with the
+    /// unit normal in the normalised plane `(m / Mp, F / Fp)`; `None` for the
+    /// bending-only modes `+-m <= Mp`.
+    pub facet: Option<FacetMode>,
+}
+
+/// The facet of a yield polygon a mode stands for.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct FacetMode {
+    /// Index of the facet (counter-clockwise from the first quadrant).
+    pub index: usize,
+    /// Number of facets of the polygon.
+    pub count: usize,
+    /// Unit normal `(n_m, n_F)`.
+    pub normal: [f64; 2],
 }
 
 /// A generalised coordinate: one unsupported component of one node.
@@ -111,13 +159,17 @@ pub struct Coordinate {
     pub component: Component,
 }
 
-/// A member force: the bending moment at a critical section, or an element's axial force.
+/// A member force: the bending moment at a critical section, or an element's
+/// axial force or torque.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum MemberForce {
     /// Bending moment (sagging positive) at a section (index into [`System::sections`]).
     Moment(usize),
-    /// Axial force (tension positive) of an element, the reaction of inextensibility.
+    /// Axial force (tension positive) of a planar element: the reaction of
+    /// inextensibility, or a yield force where the member asks for the interaction.
     Axial(usize),
+    /// Torque of a grillage element (right-handed about the element's axis).
+    Torque(usize),
 }
 
 /// Sizes of system (9).
@@ -154,11 +206,15 @@ pub struct LeftOut {
     /// Sections made rigid because they are tied to a weaker (or equal) one at
     /// the same node: the pair's hinge is carried by the other section alone.
     pub tied_sections: Vec<usize>,
+    /// Nothing but supports was left out ([`System::assemble_full`]).
+    pub full_assembly: bool,
 }
 
 /// System (9) of a frame, with what was left out.
 #[derive(Clone, Debug)]
 pub struct System {
+    /// Planar or grillage.
+    pub model: Model,
     /// Kept generalised coordinates (`beta`).
     pub coordinates: Vec<Coordinate>,
     /// Kept member forces (`s`).
@@ -167,6 +223,9 @@ pub struct System {
     pub modes: Vec<YieldMode>,
     /// All critical sections of the frame (two per element), kept or not.
     pub sections: Vec<CriticalSection>,
+    /// Tied pairs `[carrier, rigid]`: the rigid section's yield modes were left
+    /// out, the carrier's hinge is the pair's (one physical hinge).
+    pub ties: Vec<[usize; 2]>,
     /// Diagonal of the lumped mass matrix `M_q` (`beta`).
     pub mass: Vec<f64>,
     /// Compatibility `A` (`s x beta`): member deformations from coordinates.
@@ -208,12 +267,19 @@ impl Dsu {
     }
 }
 
+/// One yield mode of the full system with its column of `T N` and its capacity.
+struct ModeSpec {
+    mode: YieldMode,
+    column: Vec<(usize, f64)>,
+    capacity: f64,
+}
+
 /// The full (nothing left out but supports) blocks of a frame.
 struct Full {
     coords: Vec<Coordinate>,
-    index: Vec<[Option<usize>; 3]>,
     forces: Vec<MemberForce>,
     sections: Vec<CriticalSection>,
+    modes: Vec<ModeSpec>,
     a: Mat<f64>,
     mass: Vec<f64>,
     load: Vec<f64>,
@@ -222,12 +288,14 @@ struct Full {
 }
 
 fn full_blocks(frame: &Frame) -> Full {
+    let model = frame.model;
+    let comps = model.components();
     let mut coords = Vec::new();
     let mut index = vec![[None; 3]; frame.nodes.len()];
     let mut supported = Vec::new();
     let mut loads_on_supports = Vec::new();
     for (i, n) in frame.nodes.iter().enumerate() {
-        for c in Component::ALL {
+        for c in comps {
             if n.fixed[c.index()] {
                 supported.push((i, c));
                 if n.load[c.index()] != 0.0 {
@@ -255,9 +323,12 @@ fn full_blocks(frame: &Frame) -> Full {
             });
         }
     }
-    // forces: the moments of all sections, then the axial forces
+    // forces: the moments of all sections, then the axial force or torque of each element
     let mut forces: Vec<MemberForce> = (0..2 * ne).map(MemberForce::Moment).collect();
-    forces.extend((0..ne).map(MemberForce::Axial));
+    forces.extend((0..ne).map(|e| match model {
+        Model::Planar => MemberForce::Axial(e),
+        Model::Grillage => MemberForce::Torque(e),
+    }));
     let mut a = Mat::<f64>::zeros(3 * ne, coords.len());
     for (e, el) in frame.elements.iter().enumerate() {
         let (c, s, h) = (el.cos, el.sin, el.length);
@@ -270,37 +341,111 @@ fn full_blocks(frame: &Frame) -> Full {
                 }
             }
         };
-        // psi = (-s (uxb - uxa) + c (uyb - uya)) / h
-        let psi = [
-            (ia[0], s / h),
-            (ia[1], -c / h),
-            (ib[0], -s / h),
-            (ib[1], c / h),
-        ];
         let (rf, rt, rn) = (2 * e, 2 * e + 1, 2 * ne + e);
-        // from section: -(theta_a - psi)
-        add(rf, ia[2], -1.0);
-        for &(j, v) in &psi {
-            add(rf, j, v);
+        match model {
+            Model::Planar => {
+                // psi = (-s (uxb - uxa) + c (uyb - uya)) / h
+                let psi = [
+                    (ia[0], s / h),
+                    (ia[1], -c / h),
+                    (ib[0], -s / h),
+                    (ib[1], c / h),
+                ];
+                // from section: -(theta_a - psi)
+                add(rf, ia[2], -1.0);
+                for &(j, v) in &psi {
+                    add(rf, j, v);
+                }
+                // to section: theta_b - psi
+                add(rt, ib[2], 1.0);
+                for &(j, v) in &psi {
+                    add(rt, j, -v);
+                }
+                // elongation
+                add(rn, ia[0], -c);
+                add(rn, ia[1], -s);
+                add(rn, ib[0], c);
+                add(rn, ib[1], s);
+            }
+            Model::Grillage => {
+                // psi = -(w_b - w_a) / h; theta = -s r_x + c r_y; phi = c r_x + s r_y
+                let psi = [(ia[0], 1.0 / h), (ib[0], -1.0 / h)];
+                // from section: -(theta_a - psi)
+                add(rf, ia[1], s);
+                add(rf, ia[2], -c);
+                for &(j, v) in &psi {
+                    add(rf, j, v);
+                }
+                // to section: theta_b - psi
+                add(rt, ib[1], -s);
+                add(rt, ib[2], c);
+                for &(j, v) in &psi {
+                    add(rt, j, -v);
+                }
+                // twist phi_b - phi_a
+                add(rn, ia[1], -c);
+                add(rn, ia[2], -s);
+                add(rn, ib[1], c);
+                add(rn, ib[2], s);
+            }
         }
-        // to section: theta_b - psi
-        add(rt, ib[2], 1.0);
-        for &(j, v) in &psi {
-            add(rt, j, -v);
+    }
+    let mut modes = Vec::new();
+    for (k, sec) in sections.iter().enumerate() {
+        let el = &frame.elements[sec.element];
+        let mp = sec.plastic_moment;
+        match el.interaction {
+            None => {
+                for (sign, v) in [(Sign::Positive, 1.0), (Sign::Negative, -1.0)] {
+                    modes.push(ModeSpec {
+                        mode: YieldMode {
+                            section: k,
+                            sign,
+                            facet: None,
+                        },
+                        column: vec![(k, v)],
+                        capacity: mp,
+                    });
+                }
+            }
+            Some(it) => {
+                let polygon = Polygon::new(it.curve, it.facets)
+                    .expect("the scene checked the number of facets");
+                for (i, f) in polygon.facets().iter().enumerate() {
+                    let [nm, nf] = f.normal;
+                    let mut column = vec![(k, nm)];
+                    if nf != 0.0 {
+                        column.push((2 * ne + sec.element, nf * mp / it.capacity));
+                    }
+                    modes.push(ModeSpec {
+                        mode: YieldMode {
+                            section: k,
+                            sign: if nm >= 0.0 {
+                                Sign::Positive
+                            } else {
+                                Sign::Negative
+                            },
+                            facet: Some(FacetMode {
+                                index: i,
+                                count: it.facets,
+                                normal: f.normal,
+                            }),
+                        },
+                        column,
+                        capacity: f.offset * mp,
+                    });
+                }
+            }
         }
-        // elongation
-        add(rn, ia[0], -c);
-        add(rn, ia[1], -s);
-        add(rn, ib[0], c);
-        add(rn, ib[1], s);
     }
     let mass = coords
         .iter()
         .map(|co| {
             let n = &frame.nodes[co.node];
-            match co.component {
-                Component::Rz => n.inertia,
-                _ => n.mass,
+            if co.component.is_rotation() {
+                n.inertia
+            } else {
+                n.mass
             }
         })
         .collect();
@@ -310,9 +455,9 @@ fn full_blocks(frame: &Frame) -> Full {
         .collect();
     Full {
         coords,
-        index,
         forces,
         sections,
+        modes,
         a,
         mass,
         load,
@@ -321,32 +466,65 @@ fn full_blocks(frame: &Frame) -> Full {
     }
 }
 
-/// Tied pairs: where exactly two sections meet at a node whose rotation is
-/// free, without rotary inertia or applied moment, node equilibrium makes
-/// their moments equal and only the split of the hinge rotation between them
-/// would differ (fact 4 of the notes). The stronger section of each pair (the
-/// later one on a tie) gets no yield modes: the same mechanisms and the same
-/// dissipation, without duplicate yield rows, non-unique node rotations and
-/// the degenerate pivots they cause.
-fn rigid_sections(frame: &Frame, sections: &[CriticalSection]) -> Vec<bool> {
+/// Tied pairs `[carrier, rigid]`: where exactly two sections meet at a node
+/// whose rotation is free, without rotary inertia or applied moment, node
+/// equilibrium makes their forces equal and only the split of the hinge
+/// rotation between them would differ (fact 4 of the notes). The stronger
+/// section of each pair (the later one on a tie) gets no yield modes: the
+/// same mechanisms and the same dissipation, without duplicate yield rows,
+/// non-unique node rotations and the degenerate pivots they cause.
+///
+/// Planar: sections without interaction (the moment is a scalar, equal across
+/// any angle). An axial interaction is never tied (nodal masses and loads
+/// change the axial force from one element to the next). Grillage: collinear
+/// elements (then the bending moment and the torque both carry over) with the
+/// same strength, at a node whose two rotations are free and unloaded.
+fn rigid_sections(frame: &Frame, sections: &[CriticalSection]) -> Vec<[usize; 2]> {
     let mut at_node: Vec<Vec<usize>> = vec![Vec::new(); frame.nodes.len()];
     for (k, s) in sections.iter().enumerate() {
         at_node[s.node].push(k);
     }
-    let mut rigid = vec![false; sections.len()];
+    let mut ties = Vec::new();
     for (i, secs) in at_node.iter().enumerate() {
         let n = &frame.nodes[i];
-        if secs.len() == 2 && !n.fixed[2] && n.inertia == 0.0 && n.load[2] == 0.0 {
-            let (a, b) = (secs[0], secs[1]);
+        if secs.len() != 2 || n.inertia != 0.0 {
+            continue;
+        }
+        let (a, b) = (secs[0], secs[1]);
+        let (ea, eb) = (
+            &frame.elements[sections[a].element],
+            &frame.elements[sections[b].element],
+        );
+        let tied = match frame.model {
+            Model::Planar => {
+                !n.fixed[2]
+                    && n.load[2] == 0.0
+                    && ea.interaction.is_none()
+                    && eb.interaction.is_none()
+            }
+            Model::Grillage => {
+                let collinear = (ea.cos == eb.cos && ea.sin == eb.sin)
+                    || (ea.cos == -eb.cos && ea.sin == -eb.sin);
+                !n.fixed[1]
+                    && !n.fixed[2]
+                    && n.load[1] == 0.0
+                    && n.load[2] == 0.0
+                    && collinear
+                    && ea.plastic_moment == eb.plastic_moment
+                    && ea.interaction == eb.interaction
+            }
+        };
+        if tied {
             let drop = if sections[b].plastic_moment >= sections[a].plastic_moment {
                 b
             } else {
                 a
             };
-            rigid[drop] = true;
+            let keep = if drop == b { a } else { b };
+            ties.push([keep, drop]);
         }
     }
-    rigid
+    ties
 }
 
 /// A coordinate that the load can accelerate without limit: it moves in a
@@ -358,10 +536,17 @@ pub fn massless_mechanism(frame: &Frame) -> Option<(usize, Component)> {
     if massless.is_empty() {
         return None;
     }
-    // A massless motion moves only massless coordinates; bending is free at the
-    // hinges of every element end, so only the inextensibility rows restrict it.
+    // A massless motion moves only massless coordinates; every deformation with
+    // a yield mode is free at the hinges, so only the rows without one (the
+    // inextensibility of planar members) restrict it.
     let ne = frame.elements.len();
-    let c = Mat::from_fn(ne, massless.len(), |i, k| f.a[(2 * ne + i, massless[k])]);
+    let rigid_rows: Vec<usize> = (0..ne)
+        .filter(|&e| frame.model == Model::Planar && frame.elements[e].interaction.is_none())
+        .map(|e| 2 * ne + e)
+        .collect();
+    let c = Mat::from_fn(rigid_rows.len(), massless.len(), |i, k| {
+        f.a[(rigid_rows[i], massless[k])]
+    });
     let (_, basis) = null_space(&c);
     let scale = massless.iter().fold(0.0f64, |s, &j| s.max(f.load[j].abs()));
     if scale == 0.0 {
@@ -402,10 +587,19 @@ impl System {
     /// assert!(sys.is_determinate());
     /// ```
     pub fn assemble(frame: &Frame) -> System {
+        Self::assemble_with(frame, true)
+    }
+
+    /// System (9) with nothing left out but the supported coordinates: every
+    /// coordinate, member force and yield mode of the model, no ties. The same
+    /// path as [`System::assemble`] (a check of the leave-outs), larger.
+    pub fn assemble_full(frame: &Frame) -> System {
+        Self::assemble_with(frame, false)
+    }
+
+    fn assemble_with(frame: &Frame, leave_out: bool) -> System {
         let f = full_blocks(frame);
-        let (nb, ns) = (f.coords.len(), f.forces.len());
-        let ne = frame.elements.len();
-        let np = 4 * ne;
+        let (nb, ns, np) = (f.coords.len(), f.forces.len(), f.modes.len());
         // variables: coordinates [0, nb), forces [nb, nb + ns), modes [nb + ns, ...)
         let mut dsu = Dsu((0..nb + ns + np).collect());
         for r in 0..ns {
@@ -415,10 +609,10 @@ impl System {
                 }
             }
         }
-        for k in 0..2 * ne {
-            // section k's moment is force k; its modes are 2k, 2k + 1
-            dsu.union(nb + k, nb + ns + 2 * k);
-            dsu.union(nb + k, nb + ns + 2 * k + 1);
+        for (k, m) in f.modes.iter().enumerate() {
+            for &(r, _) in &m.column {
+                dsu.union(nb + r, nb + ns + k);
+            }
         }
         let mut loaded = vec![false; nb + ns + np];
         for j in 0..nb {
@@ -427,16 +621,30 @@ impl System {
                 loaded[r] = true;
             }
         }
-        let keep: Vec<bool> = (0..nb + ns + np).map(|v| loaded[dsu.find(v)]).collect();
+        let keep: Vec<bool> = (0..nb + ns + np)
+            .map(|v| !leave_out || loaded[dsu.find(v)])
+            .collect();
         let kc: Vec<usize> = (0..nb).filter(|&j| keep[j]).collect();
         let kf: Vec<usize> = (0..ns).filter(|&r| keep[nb + r]).collect();
-        let rigid = rigid_sections(frame, &f.sections);
+        let ties: Vec<[usize; 2]> = if leave_out {
+            rigid_sections(frame, &f.sections)
+                .into_iter()
+                .filter(|t| keep[nb + t[0]] && keep[nb + t[1]])
+                .collect()
+        } else {
+            Vec::new()
+        };
+        let mut rigid = vec![false; f.sections.len()];
+        for t in &ties {
+            rigid[t[1]] = true;
+        }
         let km: Vec<usize> = (0..np)
-            .filter(|&k| keep[nb + ns + k] && !rigid[k / 2])
+            .filter(|&k| keep[nb + ns + k] && !rigid[f.modes[k].mode.section])
             .collect();
         let mut left_out = LeftOut {
             supported: f.supported.clone(),
             loads_on_supports: f.loads_on_supports.clone(),
+            full_assembly: !leave_out,
             ..LeftOut::default()
         };
         for (co, _) in f.coords.iter().zip(&keep).filter(|(_, k)| !**k) {
@@ -447,40 +655,34 @@ impl System {
                 left_out.decoupled_forces.push(f.forces[r]);
             }
         }
-        left_out.tied_sections = (0..f.sections.len())
-            .filter(|&k| rigid[k] && keep[nb + k])
-            .collect();
-        left_out.decoupled_modes = np - km.len() - 2 * left_out.tied_sections.len();
+        left_out.tied_sections = ties.iter().map(|t| t[1]).collect();
+        let tied_modes = (0..np)
+            .filter(|&k| keep[nb + ns + k] && rigid[f.modes[k].mode.section])
+            .count();
+        left_out.decoupled_modes = np - km.len() - tied_modes;
         let a = Mat::from_fn(kf.len(), kc.len(), |i, j| f.a[(kf[i], kc[j])]);
+        let mut row_of = vec![None; ns];
+        for (i, &r) in kf.iter().enumerate() {
+            row_of[r] = Some(i);
+        }
         let mut tn = Mat::<f64>::zeros(kf.len(), km.len());
-        let modes: Vec<YieldMode> = km
-            .iter()
-            .map(|&k| YieldMode {
-                section: k / 2,
-                sign: if k % 2 == 0 {
-                    Sign::Positive
-                } else {
-                    Sign::Negative
-                },
-            })
-            .collect();
         for (col, &k) in km.iter().enumerate() {
-            let sec_force = k / 2; // the moment of section k/2 is force k/2
-            if let Some(row) = kf.iter().position(|&r| r == sec_force) {
-                tn[(row, col)] = if k % 2 == 0 { 1.0 } else { -1.0 };
+            for &(r, v) in &f.modes[k].column {
+                if let Some(row) = row_of[r] {
+                    tn[(row, col)] = v;
+                }
             }
         }
-        let capacities = modes
-            .iter()
-            .map(|m| f.sections[m.section].plastic_moment)
-            .collect();
+        let modes: Vec<YieldMode> = km.iter().map(|&k| f.modes[k].mode).collect();
+        let capacities = km.iter().map(|&k| f.modes[k].capacity).collect();
         let (rank_a, _) = null_space(&a);
-        let _ = &f.index;
         System {
+            model: frame.model,
             coordinates: kc.iter().map(|&j| f.coords[j]).collect(),
             forces: kf.iter().map(|&r| f.forces[r]).collect(),
             modes,
             sections: f.sections,
+            ties,
             mass: kc.iter().map(|&j| f.mass[j]).collect(),
             a,
             tn,
@@ -603,6 +805,15 @@ impl System {
             .iter()
             .position(|f| *f == MemberForce::Moment(section))
     }
+
+    /// Index of the kept member force holding the axial force or torque of
+    /// `section`'s element, if kept.
+    pub fn second_force_index(&self, section: usize) -> Option<usize> {
+        let e = self.sections[section].element;
+        self.forces
+            .iter()
+            .position(|f| *f == MemberForce::Axial(e) || *f == MemberForce::Torque(e))
+    }
 }
 
 #[cfg(test)]
@@ -689,6 +900,7 @@ fx = 1.0
                     Component::X => -n.y,
                     Component::Y => n.x,
                     Component::Rz => 1.0,
+                    other => panic!("{other:?} in a planar frame"),
                 }
             })
             .collect();

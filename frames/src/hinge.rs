@@ -13,7 +13,16 @@
 //! reported, never hidden.
 //!
 //! States are read on each piece at an interior point, with a relative
-//! tolerance suited to the working precision.
+//! tolerance suited to the working precision (for `x*_dd`, relative to the
+//! largest `x*_dd` on the piece and its neighbours).
+//!
+//! **Yield polygons.** A section with an interaction (bending-torsion,
+//! bending-axial) has one yield mode per facet of its polygon. It is at yield
+//! when any facet is, and accelerates when any facet's `x*_dd` is positive;
+//! events name the facet (the nearest to yield, the fastest). The flow moving
+//! from one facet to the next is not an event of the hinge (it shows as a
+//! breakpoint without events); leaving every facet after having flowed is
+//! `unloaded`.
 //!
 //! **Tied sections.** Where exactly two sections meet at a node whose rotation
 //! is free, without rotary inertia or applied moment, node equilibrium makes
@@ -71,6 +80,9 @@ pub struct HingeEvent {
     pub section: usize,
     /// The sign of the yield mode involved.
     pub sign: Sign,
+    /// The yield mode involved (index into [`System::modes`]): for a section
+    /// with a yield polygon, the facet it yields or flows on.
+    pub mode: usize,
 }
 
 /// A set of critical sections that act as one physical hinge at a node.
@@ -132,6 +144,8 @@ pub struct Hinge {
     pub sign: Sign,
     /// The section that flowed first.
     pub section: usize,
+    /// The yield mode it flowed on first (index into [`System::modes`]).
+    pub mode: usize,
 }
 
 /// The path read as hinge events.
@@ -166,10 +180,10 @@ impl Reading {
 /// Per-piece states of every section.
 #[derive(Clone, Debug)]
 struct State {
-    /// `Some(sign)` if the section is at yield.
-    yield_sign: Vec<Option<Sign>>,
-    /// `Some(sign)` if the section accelerates.
-    acc_sign: Vec<Option<Sign>>,
+    /// `Some(mode)` if the section is at yield (on that mode; the most loaded one).
+    yield_mode: Vec<Option<usize>>,
+    /// `Some(mode)` if the section accelerates (on that mode; the fastest one).
+    acc_mode: Vec<Option<usize>>,
     unique: bool,
 }
 
@@ -177,6 +191,11 @@ fn groups(frame: &Frame, system: &System) -> (Vec<HingeGroup>, Vec<Option<usize>
     let kept: Vec<bool> = (0..system.sections.len())
         .map(|k| system.moment_index(k).is_some())
         .collect();
+    let mut partner = vec![None; system.sections.len()];
+    for t in &system.ties {
+        partner[t[0]] = Some(t[1]);
+        partner[t[1]] = Some(t[0]);
+    }
     let mut at_node: Vec<Vec<usize>> = vec![Vec::new(); frame.nodes.len()];
     for (k, s) in system.sections.iter().enumerate() {
         if kept[k] {
@@ -184,18 +203,21 @@ fn groups(frame: &Frame, system: &System) -> (Vec<HingeGroup>, Vec<Option<usize>
         }
     }
     let mut gs = Vec::new();
-    let mut group_of = vec![None; system.sections.len()];
+    let mut group_of: Vec<Option<usize>> = vec![None; system.sections.len()];
     for (i, secs) in at_node.iter().enumerate() {
-        let n = &frame.nodes[i];
-        let tied = secs.len() == 2 && !n.fixed[2] && n.inertia == 0.0 && n.load[2] == 0.0;
-        let parts: Vec<Vec<usize>> = if tied {
-            vec![secs.clone()]
-        } else {
-            secs.iter().map(|&k| vec![k]).collect()
-        };
-        for p in parts {
-            for &k in &p {
-                group_of[k] = Some(gs.len());
+        for &k in secs {
+            if group_of[k].is_some() {
+                continue;
+            }
+            let mut p = vec![k];
+            if let Some(o) = partner[k] {
+                if kept[o] {
+                    p.push(o);
+                    p.sort_unstable();
+                }
+            }
+            for &j in &p {
+                group_of[j] = Some(gs.len());
             }
             gs.push(HingeGroup {
                 node: i,
@@ -206,23 +228,19 @@ fn groups(frame: &Frame, system: &System) -> (Vec<HingeGroup>, Vec<Option<usize>
     (gs, group_of)
 }
 
-/// Whether the member forces are unique once the moments of `pinned` sections are fixed.
+/// Whether the member forces are unique once the yield conditions of the
+/// `pinned` modes hold as equalities (their columns of `T N` fix combinations
+/// of the member forces).
 fn stress_unique(system: &System, pinned: &[usize]) -> bool {
     if system.is_determinate() {
         return true;
     }
     let (nb, ns) = (system.coordinates.len(), system.forces.len());
-    let rows: Vec<usize> = pinned
-        .iter()
-        .filter_map(|&k| system.moment_index(k))
-        .collect();
-    let m = Mat::from_fn(nb + rows.len(), ns, |i, j| {
+    let m = Mat::from_fn(nb + pinned.len(), ns, |i, j| {
         if i < nb {
             system.a[(j, i)]
-        } else if rows[i - nb] == j {
-            1.0
         } else {
-            0.0
+            system.tn[(j, pinned[i - nb])]
         }
     });
     null_space(&m).0 == ns
@@ -240,9 +258,9 @@ fn restore_yield(
 ) {
     let ns = system.sections.len();
     let nb = system.coordinates.len();
-    let mut flowed: Vec<Option<Sign>> = vec![None; ns];
+    let mut flowed: Vec<Option<usize>> = vec![None; ns];
     for (k, &(pk, from, to)) in view.iter().enumerate() {
-        for (f, a) in flowed.iter_mut().zip(&states[k].acc_sign) {
+        for (f, a) in flowed.iter_mut().zip(&states[k].acc_mode) {
             if a.is_some() {
                 *f = *a;
             }
@@ -251,13 +269,12 @@ fn restore_yield(
             continue;
         }
         let lost: Vec<usize> = (0..ns)
-            .filter(|&s| flowed[s].is_some() && states[k].yield_sign[s].is_none())
+            .filter(|&s| flowed[s].is_some() && states[k].yield_mode[s].is_none())
             .collect();
         if lost.is_empty() {
             continue;
         }
-        let pinned: Vec<(usize, Sign)> =
-            (0..ns).filter_map(|s| flowed[s].map(|g| (s, g))).collect();
+        let pinned: Vec<usize> = flowed.iter().flatten().copied().collect();
         let piece = &pieces[pk];
         let rep = piece.representative();
         let lambdas: Vec<f64> = if to.is_finite() {
@@ -274,7 +291,7 @@ fn restore_yield(
         });
         if ok {
             for s in lost {
-                states[k].yield_sign[s] = flowed[s];
+                states[k].yield_mode[s] = flowed[s];
             }
         }
     }
@@ -284,11 +301,24 @@ fn restore_yield(
 pub fn read(frame: &Frame, system: &System, pieces: &[Piece], tolerance: f64) -> Reading {
     let (groups, group_of) = groups(frame, system);
     let ns = system.sections.len();
-    let zscale = pieces
+    // The scale of x*_dd that tells "accelerating" from round-off, per piece:
+    // the largest |x*_dd| on the piece and its neighbours (x*_dd grows with
+    // Lambda, so one scale for a path whose breakpoints span decades would
+    // hide the first hinges), never below 1e-9 of the largest on the path.
+    let zmax: Vec<f64> = pieces
         .iter()
-        .flat_map(|p| p.z(p.representative()))
-        .fold(0.0f64, |a, v| a.max(v.abs()))
-        .max(f64::MIN_POSITIVE);
+        .map(|p| {
+            p.z(p.representative())
+                .iter()
+                .fold(0.0f64, |a, v| a.max(v.abs()))
+        })
+        .collect();
+    let global = zmax.iter().fold(f64::MIN_POSITIVE, |a, &v| a.max(v));
+    let zscale_of = |i: usize| -> f64 {
+        let lo = i.saturating_sub(1);
+        let hi = (i + 1).min(zmax.len() - 1);
+        zmax[lo..=hi].iter().fold(1e-9 * global, |a, &v| a.max(v))
+    };
     // Pieces shorter than the tolerance (f32 round-off, degenerate steps) are
     // skipped: their neighbours meet at one breakpoint.
     let mut view: Vec<(usize, f64, f64)> = Vec::new();
@@ -314,45 +344,60 @@ pub fn read(frame: &Frame, system: &System, pieces: &[Piece], tolerance: f64) ->
             let p = &pieces[i];
             let l = p.representative();
             let (z, w) = (p.z(l), p.w(l));
-            let mut yield_sign = vec![None; ns];
-            let mut acc_sign = vec![None; ns];
+            let zscale = zscale_of(i);
+            let mut yield_mode: Vec<Option<usize>> = vec![None; ns];
+            let mut acc_mode: Vec<Option<usize>> = vec![None; ns];
             for (k, mode) in system.modes.iter().enumerate() {
                 let s = mode.section;
-                if w[k] <= tolerance * system.capacities[k] {
-                    yield_sign[s] = Some(mode.sign);
+                // at a vertex of a polygon two facets are at yield: keep the
+                // one nearer yield, and the faster-accelerating one
+                let nearer = match yield_mode[s] {
+                    None => true,
+                    Some(j) => w[k] / system.capacities[k] < w[j] / system.capacities[j],
+                };
+                if w[k] <= tolerance * system.capacities[k] && nearer {
+                    yield_mode[s] = Some(k);
                 }
-                if z[k] > tolerance * zscale {
-                    acc_sign[s] = Some(mode.sign);
+                let faster = match acc_mode[s] {
+                    None => true,
+                    Some(j) => z[k] > z[j],
+                };
+                if z[k] > tolerance * zscale && faster {
+                    acc_mode[s] = Some(k);
                 }
             }
-            let pinned: Vec<usize> = (0..ns).filter(|&s| acc_sign[s].is_some()).collect();
+            let pinned: Vec<usize> = (0..system.modes.len())
+                .filter(|&k| z[k] > tolerance * zscale)
+                .collect();
             let unique = *cache
                 .entry(pinned.clone())
                 .or_insert_with(|| stress_unique(system, &pinned));
             State {
-                yield_sign,
-                acc_sign,
+                yield_mode,
+                acc_mode,
                 unique,
             }
         })
         .collect();
     restore_yield(system, pieces, &view, &mut states);
-    type SectionSign = Option<(usize, Sign)>;
-    let group_state = |st: &State, g: usize| -> (SectionSign, SectionSign) {
+    // (section, mode) of a group at yield / accelerating
+    type SectionMode = Option<(usize, usize)>;
+    let group_state = |st: &State, g: usize| -> (SectionMode, SectionMode) {
         let y = groups[g]
             .sections
             .iter()
-            .find_map(|&k| st.yield_sign[k].map(|s| (k, s)));
+            .find_map(|&k| st.yield_mode[k].map(|m| (k, m)));
         let a = groups[g]
             .sections
             .iter()
-            .find_map(|&k| st.acc_sign[k].map(|s| (k, s)));
+            .find_map(|&k| st.acc_mode[k].map(|m| (k, m)));
         (y, a)
     };
+    let sign = |m: usize| system.modes[m].sign;
     let ng = groups.len();
     let first_flow = states
         .iter()
-        .position(|s| s.acc_sign.iter().any(Option::is_some));
+        .position(|s| s.acc_mode.iter().any(Option::is_some));
     let mut breakpoints = Vec::new();
     let mut intervals = Vec::new();
     let mut hinges = Vec::new();
@@ -391,8 +436,8 @@ pub fn read(frame: &Frame, system: &System, pieces: &[Piece], tolerance: f64) ->
     let mut reported_yield = vec![false; ng];
     let mut flowed = vec![false; ng];
     let mut started = vec![false; ng];
-    let mut prev_acc: Vec<Option<(usize, Sign)>> = vec![None; ng];
-    let mut prev_yield: Vec<Option<(usize, Sign)>> = vec![None; ng];
+    let mut prev_acc: Vec<SectionMode> = vec![None; ng];
+    let mut prev_yield: Vec<SectionMode> = vec![None; ng];
     for (k, &(pk, lambda, lambda_to)) in view.iter().enumerate().skip(kc) {
         let st = &states[k];
         let mut events = Vec::new();
@@ -405,36 +450,39 @@ pub fn read(frame: &Frame, system: &System, pieces: &[Piece], tolerance: f64) ->
             let (y, a) = group_state(st, g);
             now_yield[g] = y;
             now_acc[g] = a;
-            if let Some((sec, sign)) = y {
+            if let Some((sec, mode)) = y {
                 if !reported_yield[g] && (st.unique || a.is_some()) {
                     events.push(HingeEvent {
                         kind: EventKind::Yielded,
                         group: g,
                         section: sec,
-                        sign,
+                        sign: sign(mode),
+                        mode,
                     });
                     reported_yield[g] = true;
                 }
             } else {
                 if flowed[g] {
-                    if let Some((sec, sign)) = prev_yield[g].or(prev_acc[g]) {
+                    if let Some((sec, mode)) = prev_yield[g].or(prev_acc[g]) {
                         events.push(HingeEvent {
                             kind: EventKind::Unloaded,
                             group: g,
                             section: sec,
-                            sign,
+                            sign: sign(mode),
+                            mode,
                         });
                     }
                 }
                 reported_yield[g] = false;
             }
             match (prev_acc[g], a) {
-                (None, Some((sec, sign))) => {
+                (None, Some((sec, mode))) => {
                     events.push(HingeEvent {
                         kind: EventKind::FlowStarted,
                         group: g,
                         section: sec,
-                        sign,
+                        sign: sign(mode),
+                        mode,
                     });
                     if !started[g] {
                         started[g] = true;
@@ -442,17 +490,19 @@ pub fn read(frame: &Frame, system: &System, pieces: &[Piece], tolerance: f64) ->
                             group: g,
                             node: groups[g].node,
                             lambda,
-                            sign,
+                            sign: sign(mode),
+                            mode,
                             section: sec,
                         });
                     }
                 }
-                (Some((sec, sign)), None) if y.is_some() => {
+                (Some((sec, mode)), None) if y.is_some() => {
                     events.push(HingeEvent {
                         kind: EventKind::FlowStopped,
                         group: g,
                         section: sec,
-                        sign,
+                        sign: sign(mode),
+                        mode,
                     });
                 }
                 _ => {}

@@ -25,6 +25,15 @@
 //! on the unreduced system by default; Lemke on the Schur reduction for
 //! statically determinate frames).
 //!
+//! **Grillages and yield polygons.** A scene with `model = "grillage"` is a
+//! frame in the x-y plane loaded out of it (pipe whip normal to the plane of a
+//! bent or curved pipe): nodes move in z and rotate about x and y, an element
+//! carries two end bending moments and a torque, and each critical section
+//! yields on an inscribed polygon of `(M/Mp)^2 + (T/Tp)^2 <= 1`, one yield mode
+//! per facet ([`yield_surface`]). Planar members may ask for the bending-axial
+//! interaction the same way. Both are "just another system (9)": the same
+//! solver, hinge reading, response and reports.
+//!
 //! The crate reads a scene ([`model`]), assembles system (9) leaving out what
 //! does not move ([`assemble`]), solves it ([`solve`]), reads the path as
 //! hinge events ([`hinge`], with [`stress`] to tell a real deactivation from
@@ -63,6 +72,7 @@ pub mod response;
 pub mod solve;
 pub mod stress;
 pub mod timestep;
+pub mod yield_surface;
 
 pub use analysis::{Analysis, AnalysisOptions};
 pub use assemble::System;

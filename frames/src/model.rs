@@ -1,10 +1,12 @@
-//! The scene: a planar frame (nodes, members, supports, masses, loads) and the
+//! The scene: a planar frame or a grillage (nodes, members, arcs, supports,
+//! masses, loads, yield polygons) and the
 //! load history `lambda(t)`, read from TOML with errors that name file, line and key.
 //!
 //! The keys of a scene file (the contract; every other key is an error):
 //!
 //! ```toml
 //! title = "optional text"
+//! model = "planar"        # the default; or "grillage" (see Models below)
 //!
 //! [[node]]
 //! id = "A"
@@ -18,10 +20,13 @@
 //! plastic_moment = 1.0
 //! elements = 4            # optional: n equal elements, new nodes "AB.1" .. "AB.3"
 //! mass_per_length = 1.0   # optional: lumped, mu*h/2 to each element end
+//! # plastic_torque = 0.9  # grillage: required, Tp
+//! # plastic_axial = 4.0   # planar, optional: Np, the bending-axial interaction
+//! # facets = 16           # with either: facets of the yield polygon
 //!
 //! [[support]]
 //! node = "A"
-//! fix = ["x", "y", "rz"]
+//! fix = ["x", "y", "rz"]  # grillage: any of "z", "rx", "ry"
 //!
 //! [[mass]]
 //! node = "B"
@@ -30,13 +35,46 @@
 //!
 //! [[load]]
 //! node = "B"
-//! fy = 1.0                # the pattern a_o: fx, fy, mz (each optional)
+//! fy = 1.0                # the pattern a_o: fx, fy, mz (each optional); grillage: fz, mx, my
+//!
+//! [[arc]]                 # a curved member, subdivided into straight elements
+//! id = "Q"
+//! centre = [0.0, 0.0]
+//! radius = 1.0
+//! start_angle = 0.0       # degrees, counter-clockwise from +x
+//! end_angle = 90.0        # the sweep is end - start (0 < |sweep| < 360)
+//! elements = 8            # nodes "Q.1" .. "Q.7" on the arc (chords between them)
+//! from = "A"              # optional: a [[node]] at the start point, else "Q.0" is generated
+//! to = "C"                # optional: a [[node]] at the end point, else "Q.8"
+//! plastic_moment = 1.0    # and plastic_torque / plastic_axial / facets / mass_per_length as a member
 //!
 //! [history]               # lambda(t); default: ramp with rate 1
 //! kind = "ramp"
 //! rate = 1.0
 //! # kind = "table",      points = [[0.0, 0.0], [1.0, 2.0], [3.0, 2.5]]  (t, lambda), held after the last
 //! # kind = "saturating", peak = 5.0, tau = 0.5                         lambda = peak (1 - exp(-t/tau))
+//! ```
+//!
+//! **Models.** `model = "planar"` (the default: every file without the key is
+//! planar, as before) or `model = "grillage"`. In a grillage the frame lies in
+//! the x-y plane; nodes move in z and rotate about x and y (right-handed):
+//! supports fix any of `"z"`, `"rx"`, `"ry"`, loads are `fz`, `mx`, `my`, `m`
+//! of `[[mass]]` acts in z and `j` about both x and y, and JSON accelerations
+//! use the component names `"z"`, `"rx"`, `"ry"`. Keys of the other model are
+//! errors.
+//!
+//! **Yield polygons.** Every grillage member needs `plastic_torque = Tp`; its
+//! sections yield on `(M/Mp)^2 + (T/Tp)^2 <= 1`. A planar member may give
+//! `plastic_axial = Np`: its sections then yield on the thin-walled pipe's
+//! `|M/Mp| <= cos(pi N / 2 Np)`, and its axial force is a yield force instead
+//! of a reaction. Either curve is replaced by an INSCRIBED polygon (vertices
+//! on the curve, the axis points among them; see [`crate::yield_surface`]) of
+//! `facets = k` facets, k a multiple of 4 up to 256, set on the member (or arc) or for
+//! the whole scene in a top-level table:
+//!
+//! ```toml
+//! [yield]
+//! facets = 16             # the default when neither says
 //! ```
 //!
 //! ```
@@ -73,35 +111,91 @@
 //! ```
 
 use crate::error::FramesError;
+use crate::yield_surface::{Curve, Polygon};
 use serde::Deserialize;
 use std::collections::HashMap;
 use toml::Spanned;
 
-/// A nodal component: translation in x, in y, or rotation about z.
+/// The structural model of a scene: which three components a node has.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum Model {
+    /// In-plane frame: nodes move in x and y and rotate about z; members carry
+    /// end moments (and an axial force).
+    #[default]
+    Planar,
+    /// Grillage: the frame lies in the x-y plane, nodes move in z and rotate
+    /// about x and y; members carry end bending moments and a torque.
+    Grillage,
+}
+
+impl Model {
+    /// `"planar"` or `"grillage"`.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Model::Planar => "planar",
+            Model::Grillage => "grillage",
+        }
+    }
+    /// The three nodal components, in the order of [`Node::fixed`] and [`Node::load`].
+    pub fn components(self) -> [Component; 3] {
+        match self {
+            Model::Planar => [Component::X, Component::Y, Component::Rz],
+            Model::Grillage => [Component::Z, Component::Rx, Component::Ry],
+        }
+    }
+    /// The load keys of the three components: `fx, fy, mz` or `fz, mx, my`.
+    pub fn load_keys(self) -> [&'static str; 3] {
+        match self {
+            Model::Planar => ["fx", "fy", "mz"],
+            Model::Grillage => ["fz", "mx", "my"],
+        }
+    }
+}
+
+/// A nodal component: translations in x, y (planar) or z (grillage), rotations
+/// about z (planar) or about x and y (grillage).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub enum Component {
-    /// Translation along the global x axis.
+    /// Translation along the global x axis (planar).
     X,
-    /// Translation along the global y axis.
+    /// Translation along the global y axis (planar).
     Y,
-    /// Rotation about z (counter-clockwise positive).
+    /// Rotation about z, counter-clockwise positive (planar).
     Rz,
+    /// Translation along the global z axis, out of the frame's plane (grillage).
+    Z,
+    /// Rotation about the global x axis, right-handed (grillage).
+    Rx,
+    /// Rotation about the global y axis, right-handed (grillage).
+    Ry,
 }
 
 impl Component {
-    /// The three components in order.
+    /// The three components of the planar model in order.
     pub const ALL: [Component; 3] = [Component::X, Component::Y, Component::Rz];
-    /// `"x"`, `"y"` or `"rz"`.
+    /// `"x"`, `"y"`, `"rz"`, `"z"`, `"rx"` or `"ry"`.
     pub fn as_str(self) -> &'static str {
         match self {
             Component::X => "x",
             Component::Y => "y",
             Component::Rz => "rz",
+            Component::Z => "z",
+            Component::Rx => "rx",
+            Component::Ry => "ry",
         }
     }
-    /// 0, 1, 2.
+    /// The slot in [`Node::fixed`], [`Node::load`] and the per-node arrays of
+    /// the response: 0, 1, 2 for `x, y, rz` (planar) and for `z, rx, ry` (grillage).
     pub fn index(self) -> usize {
-        self as usize
+        match self {
+            Component::X | Component::Z => 0,
+            Component::Y | Component::Rx => 1,
+            Component::Rz | Component::Ry => 2,
+        }
+    }
+    /// True for the rotations.
+    pub fn is_rotation(self) -> bool {
+        matches!(self, Component::Rz | Component::Rx | Component::Ry)
     }
 }
 
@@ -114,13 +208,13 @@ pub struct Node {
     pub x: f64,
     /// y coordinate.
     pub y: f64,
-    /// Supported components `[x, y, rz]`.
+    /// Supported components in the model's order (`[x, y, rz]` or `[z, rx, ry]`).
     pub fixed: [bool; 3],
     /// Lumped translational mass (from `[[mass]]` and `mass_per_length`).
     pub mass: f64,
-    /// Rotary inertia.
+    /// Rotary inertia (about z; in a grillage, about x and about y each).
     pub inertia: f64,
-    /// Load pattern `a_o` at the node: `[fx, fy, mz]`.
+    /// Load pattern `a_o` at the node: `[fx, fy, mz]` or `[fz, mx, my]`.
     pub load: [f64; 3],
     /// True for nodes generated by `elements = n`.
     pub generated: bool,
@@ -137,6 +231,9 @@ pub struct Member {
     pub to: usize,
     /// Plastic moment `Mp` (the same at every section of the member).
     pub plastic_moment: f64,
+    /// The interaction of bending with the torque (grillage) or the axial force
+    /// (planar, where asked for); `None`: bending only.
+    pub interaction: Option<Interaction>,
     /// Mass per unit length.
     pub mass_per_length: f64,
     /// The node chain from `from` to `to` (length `elements + 1`).
@@ -145,8 +242,19 @@ pub struct Member {
     pub elements: core::ops::Range<usize>,
 }
 
-/// A straight, axially rigid rigid-plastic beam element between two nodes,
-/// with a critical section at each end.
+/// How a member's sections couple the bending moment with a second force.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Interaction {
+    /// The curve (bending-torsion or bending-axial).
+    pub curve: Curve,
+    /// The plastic capacity of the second force alone (`Tp` or `Np`).
+    pub capacity: f64,
+    /// The number of facets of the inscribed polygon (a multiple of 4).
+    pub facets: usize,
+}
+
+/// A straight rigid-plastic beam element between two nodes, with a critical
+/// section at each end (axially rigid unless it has a bending-axial interaction).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Element {
     /// The member it belongs to.
@@ -163,6 +271,8 @@ pub struct Element {
     pub sin: f64,
     /// Plastic moment at both end sections.
     pub plastic_moment: f64,
+    /// The member's interaction (see [`Member::interaction`]).
+    pub interaction: Option<Interaction>,
 }
 
 /// A planar frame ready for assembly: nodes with their supports, masses and
@@ -171,6 +281,8 @@ pub struct Element {
 pub struct Frame {
     /// Scene title (may be empty).
     pub title: String,
+    /// Planar or grillage.
+    pub model: Model,
     /// Nodes: those of the scene first, then the generated ones.
     pub nodes: Vec<Node>,
     /// Members in scene order.
@@ -234,6 +346,11 @@ pub struct Scene {
 #[serde(deny_unknown_fields)]
 struct RawScene {
     title: Option<String>,
+    model: Option<Spanned<String>>,
+    #[serde(rename = "yield")]
+    yield_table: Option<Spanned<RawYield>>,
+    #[serde(default)]
+    arc: Vec<Spanned<RawArc>>,
     #[serde(default)]
     node: Vec<Spanned<RawNode>>,
     #[serde(default)]
@@ -262,7 +379,34 @@ struct RawMember {
     from: Spanned<String>,
     to: Spanned<String>,
     plastic_moment: Spanned<f64>,
+    plastic_torque: Option<Spanned<f64>>,
+    plastic_axial: Option<Spanned<f64>>,
+    facets: Option<Spanned<i64>>,
     elements: Option<Spanned<i64>>,
+    mass_per_length: Option<Spanned<f64>>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawYield {
+    facets: Option<Spanned<i64>>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawArc {
+    id: Spanned<String>,
+    centre: Spanned<Vec<f64>>,
+    radius: Spanned<f64>,
+    start_angle: Spanned<f64>,
+    end_angle: Spanned<f64>,
+    elements: Spanned<i64>,
+    from: Option<Spanned<String>>,
+    to: Option<Spanned<String>>,
+    plastic_moment: Spanned<f64>,
+    plastic_torque: Option<Spanned<f64>>,
+    plastic_axial: Option<Spanned<f64>>,
+    facets: Option<Spanned<i64>>,
     mass_per_length: Option<Spanned<f64>>,
 }
 
@@ -288,6 +432,9 @@ struct RawLoad {
     fx: Option<Spanned<f64>>,
     fy: Option<Spanned<f64>>,
     mz: Option<Spanned<f64>>,
+    fz: Option<Spanned<f64>>,
+    mx: Option<Spanned<f64>>,
+    my: Option<Spanned<f64>>,
 }
 
 #[derive(Deserialize)]
@@ -362,6 +509,189 @@ impl Ctx<'_> {
             self.err(v.span(), key, format!("must not be negative, got {x}"))
         }
     }
+}
+
+/// Facets of the yield polygons when neither the member nor `[yield]` says.
+pub const DEFAULT_FACETS: usize = 16;
+
+/// The strength keys of a member or an arc.
+struct Keys<'a> {
+    plastic_moment: &'a Spanned<f64>,
+    plastic_torque: Option<&'a Spanned<f64>>,
+    plastic_axial: Option<&'a Spanned<f64>>,
+    facets: Option<&'a Spanned<i64>>,
+    mass_per_length: Option<&'a Spanned<f64>>,
+}
+
+impl Ctx<'_> {
+    fn facets(&self, v: &Spanned<i64>, key: &str) -> Result<usize, FramesError> {
+        let k = *v.get_ref();
+        let ku = usize::try_from(k).unwrap_or(0);
+        match Polygon::new(Curve::BendingTorsion, ku) {
+            Ok(_) => Ok(ku),
+            Err(_) => self.err(
+                v.span(),
+                key,
+                format!("must be a multiple of 4 from 4 to 256 (4, 8, 16, 32, ...), got {k}"),
+            ),
+        }
+    }
+
+    fn element_count(&self, v: &Spanned<i64>, key: &str) -> Result<usize, FramesError> {
+        let n = *v.get_ref();
+        if !(1..=100_000).contains(&n) {
+            return self.err(
+                v.span(),
+                key,
+                format!("must be an integer from 1 to 100000, got {n}"),
+            );
+        }
+        Ok(n as usize)
+    }
+
+    /// `(Mp, interaction, mass per length)` of a member or arc, checked against the model.
+    fn strength(
+        &self,
+        model: Model,
+        table: &str,
+        id: &Spanned<String>,
+        k: Keys<'_>,
+        default_facets: usize,
+    ) -> Result<(f64, Option<Interaction>, f64), FramesError> {
+        let mp = self.positive(k.plastic_moment, format!("{table} plastic_moment"))?;
+        let mu = match k.mass_per_length {
+            Some(v) => self.nonnegative(v, format!("{table} mass_per_length"))?,
+            None => 0.0,
+        };
+        let facets = match k.facets {
+            Some(f) => Some(self.facets(f, &format!("{table} facets"))?),
+            None => None,
+        };
+        let interaction = match model {
+            Model::Grillage => {
+                if let Some(v) = k.plastic_axial {
+                    return self.err(
+                        v.span(),
+                        format!("{table} plastic_axial"),
+                        "not a key of a grillage member (out of plane a member carries bending and torsion: plastic_torque)",
+                    );
+                }
+                let Some(tp) = k.plastic_torque else {
+                    return self.err(
+                        id.span(),
+                        format!("{table} plastic_torque"),
+                        "a grillage member needs plastic_torque (the plastic torque Tp)",
+                    );
+                };
+                Some(Interaction {
+                    curve: Curve::BendingTorsion,
+                    capacity: self.positive(tp, format!("{table} plastic_torque"))?,
+                    facets: facets.unwrap_or(default_facets),
+                })
+            }
+            Model::Planar => {
+                if let Some(v) = k.plastic_torque {
+                    return self.err(
+                        v.span(),
+                        format!("{table} plastic_torque"),
+                        "a key of grillage members only (model = \"grillage\")",
+                    );
+                }
+                match k.plastic_axial {
+                    Some(np) => Some(Interaction {
+                        curve: Curve::BendingAxial,
+                        capacity: self.positive(np, format!("{table} plastic_axial"))?,
+                        facets: facets.unwrap_or(default_facets),
+                    }),
+                    None => {
+                        if let Some(f) = k.facets {
+                            return self.err(
+                                f.span(),
+                                format!("{table} facets"),
+                                "facets sets the bending-axial polygon of a planar member: give plastic_axial too",
+                            );
+                        }
+                        None
+                    }
+                }
+            }
+        };
+        Ok((mp, interaction, mu))
+    }
+
+    /// Adds a generated node, refusing an id that is taken.
+    #[allow(clippy::too_many_arguments)]
+    fn generate_node(
+        &self,
+        frame: &mut Frame,
+        ids: &mut HashMap<String, usize>,
+        gid: String,
+        (x, y): (f64, f64),
+        generated: bool,
+        span: core::ops::Range<usize>,
+        key: &str,
+    ) -> Result<usize, FramesError> {
+        if ids.contains_key(&gid) {
+            return self.err(
+                span,
+                key,
+                format!("generated node id \"{gid}\" is already taken"),
+            );
+        }
+        let i = frame.nodes.len();
+        ids.insert(gid.clone(), i);
+        frame.nodes.push(Node {
+            id: gid,
+            x,
+            y,
+            fixed: [false; 3],
+            mass: 0.0,
+            inertia: 0.0,
+            load: [0.0; 3],
+            generated,
+        });
+        Ok(i)
+    }
+}
+
+/// Adds a member over a chain of nodes, one element per link with its
+/// `(length, cos, sin)`, lumping `mu h / 2` to each element end.
+fn push_member(
+    frame: &mut Frame,
+    id: String,
+    chain: Vec<usize>,
+    dirs: &[(f64, f64, f64)],
+    mp: f64,
+    interaction: Option<Interaction>,
+    mu: f64,
+) {
+    let mi = frame.members.len();
+    let first = frame.elements.len();
+    for (w, &(h, c, s)) in chain.windows(2).zip(dirs) {
+        frame.elements.push(Element {
+            member: mi,
+            from: w[0],
+            to: w[1],
+            length: h,
+            cos: c,
+            sin: s,
+            plastic_moment: mp,
+            interaction,
+        });
+        let lump = 0.5 * mu * h;
+        frame.nodes[w[0]].mass += lump;
+        frame.nodes[w[1]].mass += lump;
+    }
+    frame.members.push(Member {
+        id,
+        from: chain[0],
+        to: chain[chain.len() - 1],
+        plastic_moment: mp,
+        interaction,
+        mass_per_length: mu,
+        nodes: chain,
+        elements: first..frame.elements.len(),
+    });
 }
 
 /// Turns a toml syntax or type error into one line with file, line and key.
@@ -455,6 +785,29 @@ impl Scene {
                 generated: false,
             });
         }
+        let model = match &raw.model {
+            None => Model::Planar,
+            Some(m) => match m.get_ref().trim() {
+                "planar" => Model::Planar,
+                "grillage" => Model::Grillage,
+                other => {
+                    return cx.err(
+                        m.span(),
+                        "model",
+                        format!("unknown model \"{other}\": expected \"planar\" or \"grillage\""),
+                    )
+                }
+            },
+        };
+        frame.model = model;
+        let default_facets = match raw
+            .yield_table
+            .as_ref()
+            .and_then(|y| y.get_ref().facets.as_ref())
+        {
+            Some(f) => cx.facets(f, "yield facets")?,
+            None => DEFAULT_FACETS,
+        };
         let mut member_ids: HashMap<String, ()> = HashMap::new();
         for m in &raw.member {
             let m = m.get_ref();
@@ -481,23 +834,21 @@ impl Scene {
             };
             let from = lookup(&m.from, "from")?;
             let to = lookup(&m.to, "to")?;
-            let mp = cx.positive(&m.plastic_moment, format!("member \"{id}\" plastic_moment"))?;
-            let mu = match &m.mass_per_length {
-                Some(v) => cx.nonnegative(v, format!("member \"{id}\" mass_per_length"))?,
-                None => 0.0,
-            };
+            let (mp, interaction, mu) = cx.strength(
+                model,
+                &format!("member \"{id}\""),
+                &m.id,
+                Keys {
+                    plastic_moment: &m.plastic_moment,
+                    plastic_torque: m.plastic_torque.as_ref(),
+                    plastic_axial: m.plastic_axial.as_ref(),
+                    facets: m.facets.as_ref(),
+                    mass_per_length: m.mass_per_length.as_ref(),
+                },
+                default_facets,
+            )?;
             let n = match &m.elements {
-                Some(v) => {
-                    let n = *v.get_ref();
-                    if !(1..=100_000).contains(&n) {
-                        return cx.err(
-                            v.span(),
-                            format!("member \"{id}\" elements"),
-                            format!("must be an integer from 1 to 100000, got {n}"),
-                        );
-                    }
-                    n as usize
-                }
+                Some(v) => cx.element_count(v, &format!("member \"{id}\" elements"))?,
                 None => 1,
             };
             let (a, b) = (&frame.nodes[from], &frame.nodes[to]);
@@ -518,57 +869,144 @@ impl Scene {
             let mut chain = vec![from];
             for k in 1..n {
                 let gid = format!("{id}.{k}");
-                if ids.contains_key(&gid) {
-                    return cx.err(
-                        m.elements.as_ref().map(|e| e.span()).unwrap_or(m.id.span()),
-                        format!("member \"{id}\" elements"),
-                        format!("generated node id \"{gid}\" is already taken"),
-                    );
-                }
                 let t = k as f64 / n as f64;
-                ids.insert(gid.clone(), frame.nodes.len());
-                chain.push(frame.nodes.len());
-                frame.nodes.push(Node {
-                    id: gid,
-                    // exact at the ends of axis-parallel members: dx or dy is exactly zero
-                    x: ax + t * dx,
-                    y: ay + t * dy,
-                    fixed: [false; 3],
-                    mass: 0.0,
-                    inertia: 0.0,
-                    load: [0.0; 3],
-                    generated: true,
-                });
+                // exact at the ends of axis-parallel members: dx or dy is exactly zero
+                let i = cx.generate_node(
+                    &mut frame,
+                    &mut ids,
+                    gid,
+                    (ax + t * dx, ay + t * dy),
+                    true,
+                    m.elements.as_ref().map(|e| e.span()).unwrap_or(m.id.span()),
+                    &format!("member \"{id}\" elements"),
+                )?;
+                chain.push(i);
             }
             chain.push(to);
-            let mi = frame.members.len();
-            let first = frame.elements.len();
-            for w in chain.windows(2) {
-                // equal elements share the member's direction: exact zeros for
-                // axis-parallel members keep decoupled parts decoupled
-                let h = length / n as f64;
-                frame.elements.push(Element {
-                    member: mi,
-                    from: w[0],
-                    to: w[1],
-                    length: h,
-                    cos: dx / length,
-                    sin: dy / length,
-                    plastic_moment: mp,
-                });
-                let lump = 0.5 * mu * h;
-                frame.nodes[w[0]].mass += lump;
-                frame.nodes[w[1]].mass += lump;
+            // equal elements share the member's direction: exact zeros for
+            // axis-parallel members keep decoupled parts decoupled
+            let dirs = vec![(length / n as f64, dx / length, dy / length); n];
+            push_member(&mut frame, id, chain, &dirs, mp, interaction, mu);
+        }
+        for arc in &raw.arc {
+            let r = arc.get_ref();
+            let id = r.id.get_ref().trim().to_string();
+            if id.is_empty() {
+                return cx.err(r.id.span(), "arc id", "must not be empty");
             }
-            frame.members.push(Member {
-                id,
-                from,
-                to,
-                plastic_moment: mp,
-                mass_per_length: mu,
-                nodes: chain,
-                elements: first..frame.elements.len(),
-            });
+            if member_ids.insert(id.clone(), ()).is_some() {
+                return cx.err(
+                    r.id.span(),
+                    format!("arc \"{id}\" id"),
+                    format!("duplicate member id \"{id}\" (arcs and members share ids)"),
+                );
+            }
+            let table = format!("arc \"{id}\"");
+            let (mp, interaction, mu) = cx.strength(
+                model,
+                &table,
+                &r.id,
+                Keys {
+                    plastic_moment: &r.plastic_moment,
+                    plastic_torque: r.plastic_torque.as_ref(),
+                    plastic_axial: r.plastic_axial.as_ref(),
+                    facets: r.facets.as_ref(),
+                    mass_per_length: r.mass_per_length.as_ref(),
+                },
+                default_facets,
+            )?;
+            let centre = r.centre.get_ref();
+            if centre.len() != 2 || centre.iter().any(|v| !v.is_finite() || v.abs() > 1e100) {
+                return cx.err(
+                    r.centre.span(),
+                    format!("{table} centre"),
+                    format!("must be two finite numbers [x, y], got {centre:?}"),
+                );
+            }
+            let radius = cx.positive(&r.radius, format!("{table} radius"))?;
+            let a0 = cx.finite(&r.start_angle, format!("{table} start_angle"))?;
+            let a1 = cx.finite(&r.end_angle, format!("{table} end_angle"))?;
+            let sweep = a1 - a0;
+            if sweep == 0.0 || sweep.abs() >= 360.0 {
+                return cx.err(
+                    r.end_angle.span(),
+                    format!("{table} end_angle"),
+                    format!("the arc must sweep more than 0 and less than 360 degrees, got {sweep} (from {a0} to {a1})"),
+                );
+            }
+            let n = cx.element_count(&r.elements, &format!("{table} elements"))?;
+            let point = |k: usize| {
+                let t = (a0 + sweep * k as f64 / n as f64).to_radians();
+                let (s, c) = t.sin_cos();
+                (centre[0] + radius * c, centre[1] + radius * s)
+            };
+            let mut chain = Vec::with_capacity(n + 1);
+            for k in 0..=n {
+                let end = if k == 0 {
+                    Some((&r.from, "from"))
+                } else if k == n {
+                    Some((&r.to, "to"))
+                } else {
+                    None
+                };
+                let p = point(k);
+                if let Some((Some(node), key)) = end {
+                    let i = match ids.get(node.get_ref().trim()) {
+                        Some(&i) if !frame.nodes[i].generated => i,
+                        _ => {
+                            return cx.err(
+                                node.span(),
+                                format!("{table} {key}"),
+                                format!("unknown node \"{}\"", node.get_ref()),
+                            )
+                        }
+                    };
+                    let nd = &frame.nodes[i];
+                    if (nd.x - p.0).hypot(nd.y - p.1) > 1e-9 * radius.max(p.0.abs()).max(p.1.abs())
+                    {
+                        return cx.err(
+                            node.span(),
+                            format!("{table} {key}"),
+                            format!(
+                                "node \"{}\" at ({}, {}) is not the arc's {} point ({}, {})",
+                                nd.id,
+                                nd.x,
+                                nd.y,
+                                if k == 0 { "start" } else { "end" },
+                                p.0,
+                                p.1
+                            ),
+                        );
+                    }
+                    chain.push(i);
+                } else {
+                    let i = cx.generate_node(
+                        &mut frame,
+                        &mut ids,
+                        format!("{id}.{k}"),
+                        p,
+                        end.is_none(),
+                        r.elements.span(),
+                        &format!("{table} elements"),
+                    )?;
+                    chain.push(i);
+                }
+            }
+            let mut dirs = Vec::with_capacity(n);
+            for w in chain.windows(2) {
+                let (a, b) = (&frame.nodes[w[0]], &frame.nodes[w[1]]);
+                let (dx, dy) = (b.x - a.x, b.y - a.y);
+                let h = dx.hypot(dy);
+                if !(h > 0.0 && h.is_finite()) {
+                    return cx.err(
+                        r.elements.span(),
+                        format!("{table} elements"),
+                        format!("an element of zero length between \"{}\" and \"{}\" (too many elements for the radius)", a.id, b.id),
+                    );
+                }
+                dirs.push((h, dx / h, dy / h));
+            }
+            push_member(&mut frame, id, chain, &dirs, mp, interaction, mu);
         }
         let node_ref = |s: &Spanned<String>, table: &str| -> Result<usize, FramesError> {
             match ids.get(s.get_ref().trim()) {
@@ -588,20 +1026,24 @@ impl Scene {
             if supported.insert(i, ()).is_some() {
                 return cx.err(s.node.span(), format!("support \"{nid}\" node"), format!("a second [[support]] for node \"{nid}\" (list every fixed component in one)"));
             }
+            let comps = model.components();
             for c in s.fix.get_ref() {
-                let k = match c.get_ref().as_str() {
-                    "x" => 0,
-                    "y" => 1,
-                    "rz" => 2,
-                    other => {
-                        return cx.err(
-                            c.span(),
-                            format!("support \"{nid}\" fix"),
-                            format!(
-                                "unknown component \"{other}\": expected \"x\", \"y\" or \"rz\""
-                            ),
-                        )
-                    }
+                let Some(k) = comps
+                    .iter()
+                    .position(|k| k.as_str() == c.get_ref().as_str())
+                else {
+                    let other = c.get_ref();
+                    let [a, b, d] = comps.map(|k| k.as_str());
+                    let hint = if model == Model::Grillage {
+                        " (model = \"grillage\")"
+                    } else {
+                        ""
+                    };
+                    return cx.err(
+                        c.span(),
+                        format!("support \"{nid}\" fix"),
+                        format!("unknown component \"{other}\": expected \"{a}\", \"{b}\" or \"{d}\"{hint}"),
+                    );
                 };
                 frame.nodes[i].fixed[k] = true;
             }
@@ -622,10 +1064,31 @@ impl Scene {
             let l = l.get_ref();
             let i = node_ref(&l.node, "load")?;
             let nid = frame.nodes[i].id.clone();
-            for (k, (v, name)) in [(&l.fx, "fx"), (&l.fy, "fy"), (&l.mz, "mz")]
-                .into_iter()
-                .enumerate()
-            {
+            let (ours, theirs) = match model {
+                Model::Planar => (
+                    [&l.fx, &l.fy, &l.mz],
+                    [(&l.fz, "fz"), (&l.mx, "mx"), (&l.my, "my")],
+                ),
+                Model::Grillage => (
+                    [&l.fz, &l.mx, &l.my],
+                    [(&l.fx, "fx"), (&l.fy, "fy"), (&l.mz, "mz")],
+                ),
+            };
+            for (v, name) in theirs {
+                if let Some(v) = v {
+                    let [a, b, c] = model.load_keys();
+                    return cx.err(
+                        v.span(),
+                        format!("load \"{nid}\" {name}"),
+                        format!(
+                            "not a load of a {} scene (model = \"{}\": {a}, {b}, {c})",
+                            model.as_str(),
+                            model.as_str()
+                        ),
+                    );
+                }
+            }
+            for (k, (v, name)) in ours.into_iter().zip(model.load_keys()).enumerate() {
                 if let Some(v) = v {
                     load_lines
                         .entry((i, k))
@@ -688,7 +1151,7 @@ impl Scene {
             return Err(FramesError::Scene {
                 file: self.file.clone(),
                 line,
-                key: format!("load \"{}\" {}", n.id, ["fx", "fy", "mz"][comp.index()]),
+                key: format!("load \"{}\" {}", n.id, self.frame.model.load_keys()[comp.index()]),
                 message: format!(
                     "the load acts on a mechanism with no mass on it (node \"{}\", component {}): add a [[mass]] or mass_per_length, or a support",
                     n.id,
@@ -962,7 +1425,7 @@ fy = -1.0
             err(&BASE.replace("y = 0.0", "y = nan")),
             "s.toml:9: node \"B\" y: must be a finite number, got NaN"
         );
-        assert_eq!(err(&BASE.replace("plastic_moment", "plastic_momnet")), "s.toml:14: plastic_momnet: unknown field `plastic_momnet`, expected one of `id`, `from`, `to`, `plastic_moment`, `elements`, `mass_per_length`");
+        assert_eq!(err(&BASE.replace("plastic_moment", "plastic_momnet")), "s.toml:14: plastic_momnet: unknown field `plastic_momnet`, expected one of `id`, `from`, `to`, `plastic_moment`, `plastic_torque`, `plastic_axial`, `facets`, `elements`, `mass_per_length`");
         let e = err(&format!(
             "{BASE}[history]\nkind = \"table\"\npoints = [[0.0, 0.0], [1.0, 2.0], [2.0, 1.0]]\n"
         ));

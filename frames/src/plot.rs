@@ -7,11 +7,15 @@
 //! | `profiles.svg/.csv` | the shape of the acceleration (velocity-increment) field in each interval | Fig. 1(b) |
 //! | `moments.svg/.csv` | bending moment along the members at every critical `Lambda` | Fig. 2(a) |
 //! | `displacements.svg/.csv` | nodal displacements (and velocities in the CSV) against time | Fig. 2(b) |
+//! | `geometry.svg/.csv` | the frame in plan with the hinges numbered in their order of formation, with `Lambda` | |
+//!
+//! A grillage's acceleration field (out of the plane) is drawn in an oblique
+//! view: plan coordinates `(x, y)` at `(x + 0.5 y, 0.5 y)` and `z` upward.
 
 use crate::analysis::Analysis;
 use crate::error::FramesError;
 use crate::hinge::section_name;
-use crate::model::Component;
+use crate::model::{Component, Model};
 use crate::report::format_number as g;
 use plotters::coord::Shift;
 use plotters::prelude::*;
@@ -40,6 +44,7 @@ pub fn write_all(a: &Analysis, dir: &Path) -> Result<Vec<PathBuf>, FramesError> 
     files.extend(profiles(a, dir)?);
     files.extend(moments(a, dir)?);
     files.extend(displacements(a, dir)?);
+    files.extend(geometry(a, dir)?);
     Ok(files)
 }
 
@@ -213,18 +218,29 @@ fn profiles(a: &Analysis, dir: &Path) -> Result<Vec<PathBuf>, FramesError> {
     } else {
         (0..12).map(|k| ivs[k * (ivs.len() - 1) / 11]).collect()
     };
-    let (xmin, xmax, ymin, ymax) = fr
-        .nodes
-        .iter()
-        .fold((f64::MAX, f64::MIN, f64::MAX, f64::MIN), |b, n| {
-            (b.0.min(n.x), b.1.max(n.x), b.2.min(n.y), b.3.max(n.y))
-        });
+    let grillage = fr.model == Model::Grillage;
+    // plan (x, y) to the drawing: as is (planar), oblique (grillage)
+    let view = |x: f64, y: f64| -> (f64, f64) {
+        if grillage {
+            (x + 0.5 * y, 0.5 * y)
+        } else {
+            (x, y)
+        }
+    };
+    let (xmin, xmax, ymin, ymax) =
+        fr.nodes
+            .iter()
+            .fold((f64::MAX, f64::MIN, f64::MAX, f64::MIN), |b, n| {
+                let (x, y) = view(n.x, n.y);
+                (b.0.min(x), b.1.max(x), b.2.min(y), b.3.max(y))
+            });
     let extent = (xmax - xmin).max(ymax - ymin).max(1e-12);
     let amp = 0.2 * extent;
     let (cx, cy) = (0.5 * (xmin + xmax), 0.5 * (ymin + ymax));
     let half = 0.5 * extent + 1.6 * amp;
-    let mut text = String::from(
-        "interval,lambda_from,lambda_to,lambda_shown,node,x,y,shape_x,shape_y,shape_rz\n",
+    let [c0, c1, c2] = fr.model.components().map(|c| c.as_str());
+    let mut text = format!(
+        "interval,lambda_from,lambda_to,lambda_shown,node,x,y,shape_{c0},shape_{c1},shape_{c2}\n"
     );
     let mut shapes = Vec::new();
     for &i in &ivs {
@@ -244,7 +260,13 @@ fn profiles(a: &Analysis, dir: &Path) -> Result<Vec<PathBuf>, FramesError> {
                 ]
             })
             .collect();
-        let norm = acc.iter().fold(0.0f64, |m, v| m.max(v[0].hypot(v[1])));
+        let norm = acc.iter().fold(0.0f64, |m, v| {
+            m.max(if grillage {
+                v[0].abs()
+            } else {
+                v[0].hypot(v[1])
+            })
+        });
         let s = if norm > 0.0 { 1.0 / norm } else { 0.0 };
         let shape: Vec<[f64; 3]> = acc.iter().map(|v| [v[0] * s, v[1] * s, v[2] * s]).collect();
         for (k, n) in fr.nodes.iter().enumerate() {
@@ -294,30 +316,35 @@ fn profiles(a: &Analysis, dir: &Path) -> Result<Vec<PathBuf>, FramesError> {
                     .caption(range, ("sans-serif", 14))
                     .margin(8)
                     .build_cartesian_2d((cx - half)..(cx + half), (cy - half)..(cy + half))?;
+                // displaced position of a node in the drawing
+                let moved = |i: usize| -> (f64, f64) {
+                    let (n, s) = (&fr.nodes[i], shape[i]);
+                    let (x, y) = view(n.x, n.y);
+                    if grillage {
+                        (x, y + amp * s[0])
+                    } else {
+                        (x + amp * s[0], y + amp * s[1])
+                    }
+                };
                 for e in &fr.elements {
                     let (p, q) = (&fr.nodes[e.from], &fr.nodes[e.to]);
                     chart.draw_series(LineSeries::new(
-                        vec![(p.x, p.y), (q.x, q.y)],
+                        vec![view(p.x, p.y), view(q.x, q.y)],
                         RGBColor(170, 170, 170).stroke_width(2),
                     ))?;
-                    let (sp, sq) = (shape[e.from], shape[e.to]);
                     chart.draw_series(LineSeries::new(
-                        vec![
-                            (p.x + amp * sp[0], p.y + amp * sp[1]),
-                            (q.x + amp * sq[0], q.y + amp * sq[1]),
-                        ],
+                        vec![moved(e.from), moved(e.to)],
                         RGBColor(20, 20, 20).stroke_width(2),
                     ))?;
                 }
-                for (k, n) in fr.nodes.iter().enumerate() {
+                for n in &fr.nodes {
                     if n.fixed.iter().any(|&f| f) {
                         chart.draw_series(std::iter::once(TriangleMarker::new(
-                            (n.x, n.y),
+                            view(n.x, n.y),
                             7,
                             BLACK.filled(),
                         )))?;
                     }
-                    let _ = k;
                 }
                 for (set, color) in [
                     (&iv.accelerating, RGBColor(210, 40, 40)),
@@ -325,9 +352,8 @@ fn profiles(a: &Analysis, dir: &Path) -> Result<Vec<PathBuf>, FramesError> {
                 ] {
                     for &gi in set.iter() {
                         let node = a.reading.groups[gi].node;
-                        let (n, s) = (&fr.nodes[node], shape[node]);
                         chart.draw_series(std::iter::once(Circle::new(
-                            (n.x + amp * s[0], n.y + amp * s[1]),
+                            moved(node),
                             5,
                             color.filled(),
                         )))?;
@@ -459,8 +485,12 @@ fn displacements(a: &Analysis, dir: &Path) -> Result<Vec<PathBuf>, FramesError> 
     let nt = t.times.len();
     // curves: (node, component) that move, largest first, at most 10
     let mut cand: Vec<(usize, Component, f64)> = Vec::new();
+    let translations: &[Component] = match fr.model {
+        Model::Planar => &[Component::X, Component::Y],
+        Model::Grillage => &[Component::Z],
+    };
     for (i, n) in fr.nodes.iter().enumerate() {
-        for c in [Component::X, Component::Y] {
+        for &c in translations {
             let m = t
                 .displacement
                 .iter()
@@ -477,12 +507,12 @@ fn displacements(a: &Analysis, dir: &Path) -> Result<Vec<PathBuf>, FramesError> 
     cand.sort_by_key(|c| (c.0, c.1));
     let mut header = String::from("t,lambda");
     for n in &fr.nodes {
-        for c in Component::ALL {
+        for c in fr.model.components() {
             let _ = write!(header, ",u_{}.{}", n.id, c.as_str());
         }
     }
     for n in &fr.nodes {
-        for c in Component::ALL {
+        for c in fr.model.components() {
             let _ = write!(header, ",v_{}.{}", n.id, c.as_str());
         }
     }
@@ -553,6 +583,119 @@ fn displacements(a: &Analysis, dir: &Path) -> Result<Vec<PathBuf>, FramesError> 
                 .position(SeriesLabelPosition::LowerLeft)
                 .background_style(WHITE.mix(0.85))
                 .border_style(BLACK)
+                .draw()?;
+            root.present()?;
+            Ok(())
+        };
+        draw().map_err(|e| io(&svg, e))?;
+    }
+    Ok(vec![svg, write(&csv, &text)?])
+}
+
+/// The frame in plan, supports as triangles, the hinges as circles numbered
+/// in their order of formation (ties at a node share a number), with the
+/// `Lambda` at which each formed in the legend and the CSV.
+fn geometry(a: &Analysis, dir: &Path) -> Result<Vec<PathBuf>, FramesError> {
+    let svg = dir.join("geometry.svg");
+    let csv = dir.join("geometry.csv");
+    let fr = &a.scene.frame;
+    let mut text = String::from("order,lambda,node,x,y,hinge\n");
+    for (k, h) in a.reading.hinges.iter().enumerate() {
+        let n = &fr.nodes[h.node];
+        let _ = writeln!(
+            text,
+            "{},{},{},{},{},{}",
+            k + 1,
+            g(h.lambda),
+            n.id,
+            n.x,
+            n.y,
+            group_label(a, h.group)
+        );
+    }
+    let (xmin, xmax, ymin, ymax) = fr
+        .nodes
+        .iter()
+        .fold((f64::MAX, f64::MIN, f64::MAX, f64::MIN), |b, n| {
+            (b.0.min(n.x), b.1.max(n.x), b.2.min(n.y), b.3.max(n.y))
+        });
+    let extent = (xmax - xmin).max(ymax - ymin).max(1e-12);
+    let (cx, cy) = (0.5 * (xmin + xmax), 0.5 * (ymin + ymax));
+    let half = 0.62 * extent;
+    {
+        let root: Area = SVGBackend::new(&svg, (760, 640)).into_drawing_area();
+        let draw = || -> Result<(), Box<dyn std::error::Error + '_>> {
+            root.fill(&WHITE)?;
+            let mut chart = ChartBuilder::on(&root)
+                .caption(
+                    format!(
+                        "{} ({}): hinges in order of formation",
+                        if fr.title.is_empty() {
+                            "frame"
+                        } else {
+                            &fr.title
+                        },
+                        fr.model.as_str()
+                    ),
+                    ("sans-serif", 16),
+                )
+                .margin(15)
+                .x_label_area_size(30)
+                .y_label_area_size(40)
+                .build_cartesian_2d((cx - half)..(cx + half), (cy - half)..(cy + half))?;
+            chart.configure_mesh().x_desc("x").y_desc("y").draw()?;
+            for e in &fr.elements {
+                let (p, q) = (&fr.nodes[e.from], &fr.nodes[e.to]);
+                chart.draw_series(LineSeries::new(
+                    vec![(p.x, p.y), (q.x, q.y)],
+                    RGBColor(60, 60, 60).stroke_width(3),
+                ))?;
+            }
+            for n in &fr.nodes {
+                if n.fixed.iter().any(|&f| f) {
+                    chart.draw_series(std::iter::once(TriangleMarker::new(
+                        (n.x, n.y),
+                        9,
+                        BLACK.filled(),
+                    )))?;
+                }
+                if n.load.iter().any(|&l| l != 0.0) {
+                    chart.draw_series(std::iter::once(Cross::new(
+                        (n.x, n.y),
+                        8,
+                        RGBColor(40, 140, 40).stroke_width(3),
+                    )))?;
+                }
+            }
+            // several hinges at one node: offset the labels
+            let mut at_node: std::collections::HashMap<usize, usize> = Default::default();
+            for (k, h) in a.reading.hinges.iter().enumerate() {
+                let n = &fr.nodes[h.node];
+                let dup = at_node.entry(h.node).or_insert(0);
+                let off = 0.035 * extent * *dup as f64;
+                *dup += 1;
+                let color = Palette99::pick(k).to_rgba();
+                chart
+                    .draw_series(std::iter::once(Circle::new((n.x, n.y), 7, color.filled())))?
+                    .label(format!(
+                        "{}: {} at Lambda = {}",
+                        k + 1,
+                        group_label(a, h.group),
+                        g(h.lambda)
+                    ))
+                    .legend(move |(x, y)| Circle::new((x + 8, y), 5, color.filled()));
+                chart.draw_series(std::iter::once(Text::new(
+                    format!("{}", k + 1),
+                    (n.x + 0.02 * extent, n.y + 0.02 * extent + off),
+                    ("sans-serif", 16).into_font().color(&BLACK),
+                )))?;
+            }
+            chart
+                .configure_series_labels()
+                .position(SeriesLabelPosition::UpperRight)
+                .background_style(WHITE.mix(0.85))
+                .border_style(BLACK)
+                .label_font(("sans-serif", 11))
                 .draw()?;
             root.present()?;
             Ok(())

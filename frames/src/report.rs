@@ -52,11 +52,61 @@ impl Analysis {
     }
 
     fn event_json(&self, e: &HingeEvent) -> Value {
-        self.section_json(
+        let mut o = self.section_json(
             e.section,
             e.sign.as_str(),
             &self.reading.groups[e.group].sections,
-        )
+        );
+        self.add_facet(&mut o, e.mode);
+        o
+    }
+
+    /// Adds `"facet": {"index", "of", "normal"}` for a mode of a yield polygon.
+    fn add_facet(&self, o: &mut Value, mode: usize) {
+        if let Some(f) = self.system.modes.get(mode).and_then(|m| m.facet) {
+            o["facet"] = json!({"index": f.index, "of": f.count, "normal": f.normal});
+        }
+    }
+
+    /// `+`/`-` for a bending-only mode, `@angle` (the facet normal's angle in
+    /// degrees in the plane (m, F)) for a facet of a yield polygon.
+    fn mode_tag(&self, mode: usize, sign: crate::assemble::Sign) -> String {
+        match self.system.modes.get(mode).and_then(|m| m.facet) {
+            Some(f) => format!(
+                "@{:.0}",
+                crate::yield_surface::Facet {
+                    normal: f.normal,
+                    offset: 0.0
+                }
+                .angle_degrees()
+            ),
+            None => if sign == crate::assemble::Sign::Positive {
+                "+"
+            } else {
+                "-"
+            }
+            .into(),
+        }
+    }
+
+    /// The yield surfaces of the scene, one line per distinct polygon.
+    pub fn yield_summary(&self) -> Vec<String> {
+        let mut seen: Vec<(crate::yield_surface::Curve, usize)> = Vec::new();
+        for el in &self.scene.frame.elements {
+            if let Some(it) = el.interaction {
+                if !seen.contains(&(it.curve, it.facets)) {
+                    seen.push((it.curve, it.facets));
+                }
+            }
+        }
+        seen.iter()
+            .map(|(c, k)| {
+                format!(
+                    "{}: inscribed polygon of {k} facets (vertices on the curve, the axis points among them), one yield mode per facet",
+                    c.describe()
+                )
+            })
+            .collect()
     }
 
     fn coord_name(&self, node: usize, c: Component) -> String {
@@ -70,10 +120,15 @@ impl Analysis {
                 let n = section_name(fr, &self.system, k);
                 format!("moment {} {} ({})", n.member, n.end.as_str(), n.node)
             }
-            MemberForce::Axial(e) => {
+            MemberForce::Axial(e) | MemberForce::Torque(e) => {
                 let el = &fr.elements[e];
+                let what = if matches!(f, MemberForce::Axial(_)) {
+                    "axial force"
+                } else {
+                    "torque"
+                };
                 format!(
-                    "axial force {} ({}-{})",
+                    "{what} {} ({}-{})",
                     fr.members[el.member].id, fr.nodes[el.from].id, fr.nodes[el.to].id
                 )
             }
@@ -85,6 +140,25 @@ impl Analysis {
         let lo = &self.system.left_out;
         let fr = &self.scene.frame;
         let mut out = Vec::new();
+        let nn = fr.nodes.len();
+        let other = match fr.model {
+            crate::model::Model::Planar => {
+                "out-of-plane coordinates (z, rx, ry) and forces (torques, out-of-plane moments)"
+            }
+            crate::model::Model::Grillage => {
+                "in-plane coordinates (x, y, rz) and forces (axial forces, in-plane moments)"
+            }
+        };
+        out.push(format!(
+            "by construction ({} model): the {} of a space frame, {} coordinates and {} member forces",
+            fr.model.as_str(),
+            other,
+            3 * nn,
+            3 * fr.elements.len()
+        ));
+        if lo.full_assembly {
+            out.push("nothing else (full assembly: no ties, no decoupled parts left out)".into());
+        }
         if !lo.supported.is_empty() {
             let names: Vec<String> = lo
                 .supported
@@ -131,10 +205,18 @@ impl Analysis {
                 .iter()
                 .filter(|f| matches!(f, MemberForce::Axial(_)))
                 .count();
-            let moments = lo.decoupled_forces.len() - axial;
+            let torques = lo
+                .decoupled_forces
+                .iter()
+                .filter(|f| matches!(f, MemberForce::Torque(_)))
+                .count();
+            let moments = lo.decoupled_forces.len() - axial - torques;
             let mut forces = Vec::new();
             if axial > 0 {
                 forces.push(format!("axial forces of {axial} elements"));
+            }
+            if torques > 0 {
+                forces.push(format!("torques of {torques} elements"));
             }
             if moments > 0 {
                 forces.push(format!(
@@ -185,7 +267,12 @@ impl Analysis {
             },
             "statically_determinate": sys.is_determinate(),
             "indeterminacy": sys.indeterminacy(),
-            "axial": "members inextensible: the axial force of each element is a member force whose elongation rate is held at zero (no yield mode)",
+            "model": fr.model.as_str(),
+            "yield_surfaces": self.yield_summary(),
+            "axial": match fr.model {
+                crate::model::Model::Planar => "members without plastic_axial inextensible: the axial force of each such element is a member force whose elongation rate is held at zero (no yield mode); with plastic_axial it enters the yield polygon of both end sections",
+                crate::model::Model::Grillage => "grillage: no axial forces; the torque of each element is a member force in the yield polygon of both end sections",
+            },
         });
         let info = &self.solution.info;
         let solver = json!({
@@ -232,6 +319,7 @@ impl Analysis {
                     &self.reading.groups[h.group].sections,
                 );
                 v["lambda"] = num(h.lambda);
+                self.add_facet(&mut v, h.mode);
                 v
             })
             .collect();
@@ -257,7 +345,7 @@ impl Analysis {
                 let mut acc = Map::new();
                 for (i, n) in fr.nodes.iter().enumerate() {
                     let mut o = Map::new();
-                    for c in Component::ALL {
+                    for c in fr.model.components() {
                         o.insert(c.as_str().into(), json!(r.accelerations[i][c.index()]));
                     }
                     acc.insert(n.id.clone(), Value::Object(o));
@@ -270,6 +358,7 @@ impl Analysis {
                     "constant_rate": group_nodes(&iv.constant_rate),
                     "accelerations": acc,
                     "moments": self.member_moments(|k| r.moments[k]),
+                    "second_forces": self.member_second_forces(&self.solution.pieces[iv.piece], None),
                     "residual": {"equation": r.residual.equation, "feasibility": r.residual.feasibility, "complementarity": r.residual.complementarity},
                 })
             })
@@ -278,14 +367,15 @@ impl Analysis {
             .response
             .moments_at_breakpoints
             .iter()
-            .map(|d| json!({"lambda": num(d.lambda), "members": self.member_moments(|k| d.moments[k])}))
+            .zip(self.reading.intervals.iter().filter(|i| !i.rigid))
+            .map(|(d, iv)| json!({"lambda": num(d.lambda), "members": self.member_moments(|k| d.moments[k]), "second_forces": self.member_second_forces(&self.solution.pieces[iv.piece], Some(d.lambda))}))
             .collect();
         let t = &self.response.time;
         let mut nodes = Map::new();
         for (i, n) in fr.nodes.iter().enumerate() {
             let series = |v: &Vec<Vec<[f64; 3]>>| {
                 let mut o = Map::new();
-                for c in Component::ALL {
+                for c in fr.model.components() {
                     o.insert(
                         c.as_str().into(),
                         json!(v.iter().map(|row| row[i][c.index()]).collect::<Vec<_>>()),
@@ -305,7 +395,11 @@ impl Analysis {
             "solver": solver,
             "status": self.solution.status.as_str(),
             "collapse_load": self.reading.collapse_load().map(num).unwrap_or(Value::Null),
-            "conventions": "bending moments sagging-positive in each element's axes (local y = member direction turned 90 degrees counter-clockwise); sign of a section = sign of its moment at yield; end = end of the element the section sits at; affine values are [base, slope] with value = base + slope * lambda",
+            "model": fr.model.as_str(),
+            "conventions": match fr.model {
+                crate::model::Model::Planar => "bending moments sagging-positive in each element's axes (local y = member direction turned 90 degrees counter-clockwise); sign of a section = sign of its moment at yield (for a facet of a yield polygon: the sign of the normal's bending component; the facet and its unit normal in (M/Mp, N/Np) are given); end = end of the element the section sits at; affine values are [base, slope] with value = base + slope * lambda",
+                crate::model::Model::Grillage => "grillage in the x-y plane: z translation, right-handed rotations rx, ry; element axes x' along the member, y' turned 90 degrees counter-clockwise; bending moment about y' dual to the hinge rotation (from end: -(theta_a - psi), to end: theta_b - psi, psi = -(w_b - w_a)/h), torque right-handed about x'; each yield mode is a facet of the inscribed polygon in (M/Mp, T/Tp), given with its unit normal; sign = sign of the normal's bending component; affine values are [base, slope] with value = base + slope * lambda",
+            },
             "breakpoints": breakpoints,
             "hinges": hinges,
             "intervals": intervals,
@@ -339,6 +433,102 @@ impl Analysis {
             );
         }
         Value::Object(out)
+    }
+
+    /// Per member: the axial force or torque of each element (affine `[base,
+    /// slope]` on the piece, or its value at `lambda`), where it is kept.
+    fn member_second_forces(&self, piece: &crate::solve::Piece, lambda: Option<f64>) -> Value {
+        let fr = &self.scene.frame;
+        let nb = self.system.coordinates.len();
+        let u0 = piece.u(0.0);
+        let mut out = Map::new();
+        for m in &fr.members {
+            let vals: Vec<Value> = m
+                .elements
+                .clone()
+                .map(|e| match self.system.second_force_index(2 * e) {
+                    Some(r) => {
+                        let (b, s) = (u0[nb + r], piece.du[nb + r]);
+                        match lambda {
+                            Some(l) => json!(b + s * l),
+                            None => json!([b, s]),
+                        }
+                    }
+                    None => Value::Null,
+                })
+                .collect();
+            if vals.iter().any(|v| !v.is_null()) {
+                out.insert(m.id.clone(), Value::Array(vals));
+            }
+        }
+        Value::Object(out)
+    }
+
+    /// At a breakpoint, the facets of yield polygons of flowing sections that
+    /// start or stop accelerating while their section keeps flowing (the flow
+    /// moving across the polygon; no event of the hinge itself), e.g.
+    /// `A (AB from) @124 stops, @101 starts`. A facet that stops keeps its rate
+    /// in system (9), whose path cannot let a rate decrease.
+    fn facet_changes(&self, lambda: f64) -> Vec<String> {
+        let pieces = &self.solution.pieces;
+        let ivs = &self.reading.intervals;
+        let Some(k) = ivs.iter().position(|i| i.lambda_from == lambda && !i.rigid) else {
+            return Vec::new();
+        };
+        if k == 0 || ivs[k - 1].rigid {
+            return Vec::new();
+        }
+        let acc = |iv: &crate::hinge::Interval| -> Vec<bool> {
+            let p = &pieces[iv.piece];
+            let l = if iv.lambda_to.is_finite() {
+                0.5 * (iv.lambda_from + iv.lambda_to)
+            } else {
+                iv.lambda_from + iv.lambda_from.abs().max(1.0)
+            };
+            let z = p.z(l);
+            let scale = z.iter().fold(f64::MIN_POSITIVE, |m, v| m.max(v.abs()));
+            z.iter()
+                .map(|&v| v > self.solution.tolerance * scale)
+                .collect()
+        };
+        let (before, after) = (acc(&ivs[k - 1]), acc(&ivs[k]));
+        let modes = &self.system.modes;
+        let mut out = Vec::new();
+        for sec in 0..self.system.sections.len() {
+            let ks: Vec<usize> = (0..modes.len())
+                .filter(|&m| modes[m].section == sec && modes[m].facet.is_some())
+                .collect();
+            let was = ks.iter().any(|&m| before[m]);
+            let is = ks.iter().any(|&m| after[m]);
+            if !(was && is) {
+                continue;
+            }
+            let stops: Vec<String> = ks
+                .iter()
+                .filter(|&&m| before[m] && !after[m])
+                .map(|&m| self.mode_tag(m, modes[m].sign))
+                .collect();
+            let starts: Vec<String> = ks
+                .iter()
+                .filter(|&&m| !before[m] && after[m])
+                .map(|&m| self.mode_tag(m, modes[m].sign))
+                .collect();
+            if stops.is_empty() && starts.is_empty() {
+                continue;
+            }
+            let Some(g) = self.reading.group_of[sec] else {
+                continue;
+            };
+            let mut what = Vec::new();
+            if !stops.is_empty() {
+                what.push(format!("{} stops", stops.join(" ")));
+            }
+            if !starts.is_empty() {
+                what.push(format!("{} starts", starts.join(" ")));
+            }
+            out.push(format!("{} {}", self.group_label(g), what.join(", ")));
+        }
+        out
     }
 
     fn group_label(&self, g: usize) -> String {
@@ -382,12 +572,31 @@ impl Analysis {
         for l in self.left_out_summary() {
             let _ = writeln!(s, "  left out: {l}");
         }
+        let members_note = match fr.model {
+            crate::model::Model::Planar => {
+                if fr.elements.iter().any(|e| e.interaction.is_some()) {
+                    "planar; members without plastic_axial inextensible (axial forces kept as reactions)"
+                } else {
+                    "planar; members inextensible (axial forces kept as reactions)"
+                }
+            }
+            crate::model::Model::Grillage => {
+                "grillage: z, rx, ry per node; end moments and a torque per element"
+            }
+        };
         let _ = writeln!(
             s,
-            "  {} (degree of indeterminacy {}); members inextensible (axial forces kept as reactions)",
-            if sys.is_determinate() { "statically determinate" } else { "statically indeterminate" },
+            "  {} (degree of indeterminacy {}); {members_note}",
+            if sys.is_determinate() {
+                "statically determinate"
+            } else {
+                "statically indeterminate"
+            },
             sys.indeterminacy()
         );
+        for y in self.yield_summary() {
+            let _ = writeln!(s, "  yield: {y}");
+        }
         let info = &self.solution.info;
         let _ = writeln!(
             s,
@@ -418,7 +627,12 @@ impl Analysis {
         }
         let _ = writeln!(
             s,
-            "  sign: + sagging, - hogging (element axes); load history: {}",
+            "  sign: + sagging, - hogging (element axes){}; load history: {}",
+            if self.system.modes.iter().any(|m| m.facet.is_some()) {
+                "; @a: on the facet of the yield polygon whose normal points at a degrees in (M/Mp, F/Fp)"
+            } else {
+                ""
+            },
             self.scene.history.describe()
         );
         let _ = writeln!(s);
@@ -432,11 +646,7 @@ impl Analysis {
                 format!(
                     "{}{}",
                     self.group_label(e.group),
-                    if e.sign == crate::assemble::Sign::Positive {
-                        "+"
-                    } else {
-                        "-"
-                    }
+                    self.mode_tag(e.mode, e.sign)
                 )
             };
             let forms: Vec<String> = self
@@ -463,12 +673,27 @@ impl Analysis {
                     parts.push(format!("{what}: {}", v.join(", ")));
                 }
             }
+            let facets = self.facet_changes(b.lambda);
+            if !facets.is_empty() {
+                parts.push(format!("facets: {}", facets.join(", ")));
+            }
+            if parts.is_empty() {
+                parts.push("no hinge event: the accelerations change slope (a pivot among the flowing hinges)".into());
+            }
             let note = if i == 0 {
                 "  [static collapse load]"
             } else {
                 ""
             };
             let _ = writeln!(s, "{:>15}   {}{}", fmt_g(b.lambda), parts.join("; "), note);
+        }
+        let facet_stops = self.reading.breakpoints.iter().any(|b| {
+            self.facet_changes(b.lambda)
+                .iter()
+                .any(|f| f.contains(" stops"))
+        });
+        if facet_stops {
+            let _ = writeln!(s, "NOTE: a facet that stops accelerating while its hinge flows on keeps its rate on the path of (9), which cannot let a rate decrease; the true flow may turn by decelerating it (a deactivation of that facet: check by time stepping, see examples/pipe_whip.rs)");
         }
         let dea = self.reading.deactivations();
         if !dea.is_empty() {
@@ -522,7 +747,9 @@ impl Analysis {
                 let snap = |v: f64| if v.abs() <= 1e-12 * scale { 0.0 } else { v };
                 for &i in &massive {
                     let a = r.accelerations[i];
-                    let comps: Vec<String> = Component::ALL
+                    let comps: Vec<String> = fr
+                        .model
+                        .components()
                         .iter()
                         .map(|c| (c, snap(a[c.index()][0]), snap(a[c.index()][1])))
                         .filter(|(_, b, sl)| *b != 0.0 || *sl != 0.0)
@@ -542,22 +769,30 @@ impl Analysis {
         if let Some(&t_end) = t.times.last() {
             let _ = writeln!(s);
             let k = t.times.len() - 1;
+            let grillage = fr.model == crate::model::Model::Grillage;
             let mut far = (0usize, 0.0f64);
             for (i, d) in t.displacement[k].iter().enumerate() {
-                let m = d[0].hypot(d[1]);
+                let m = if grillage {
+                    d[0].abs()
+                } else {
+                    d[0].hypot(d[1])
+                };
                 if m > far.1 {
                     far = (i, m);
                 }
             }
             let d = t.displacement[k][far.0];
+            let what = if grillage {
+                format!("z = {}", fmt_g(d[0]))
+            } else {
+                format!("x = {}, y = {}", fmt_g(d[0]), fmt_g(d[1]))
+            };
             let _ = writeln!(
                 s,
-                "at t = {} (lambda = {}): largest displacement at {}: x = {}, y = {}  [integration exact on each piece]",
+                "at t = {} (lambda = {}): largest displacement at {}: {what}  [integration exact on each piece]",
                 fmt_g(t_end),
                 fmt_g(t.lambda[k]),
                 fr.nodes[far.0].id,
-                fmt_g(d[0]),
-                fmt_g(d[1]),
             );
         }
         s

@@ -9,15 +9,15 @@
 //!
 //! ```text
 //! find X:   A^T X = a_o Lambda - M_q q_dd(Lambda)       (dynamic equilibrium)
-//!           m_k = sign_k Mp_k   for every section that has flowed
-//!           -Mp_k <= m_k <= Mp_k for every section
+//!           y*_k = X*_k - (T N)_k' X = 0   for the mode each flowed section flowed on
+//!           y*_k >= 0                      for every yield mode
 //! ```
 //!
 //! solved by Clarabel (an interior-point solver) at the ends of the piece;
 //! the feasible set moves affinely with `Lambda`, so feasibility at both ends
 //! holds in between.
 
-use crate::assemble::{MemberForce, Sign, System};
+use crate::assemble::System;
 use clarabel::algebra::CscMatrix;
 use clarabel::solver::{
     DefaultSettingsBuilder, DefaultSolver, IPSolver, NonnegativeConeT, SolverStatus,
@@ -25,10 +25,14 @@ use clarabel::solver::{
 };
 
 /// Whether a stress state exists in equilibrium with `rhs` (`a_o Lambda - M_q
-/// q_dd`), within yield everywhere and at yield with the given sign at every
-/// `pinned` section. `None` if the solver could not decide.
-pub fn admissible_with(system: &System, rhs: &[f64], pinned: &[(usize, Sign)]) -> Option<bool> {
-    let (nb, ns) = (system.coordinates.len(), system.forces.len());
+/// q_dd`), within yield everywhere and at yield on every `pinned` mode
+/// (indices into [`System::modes`]). `None` if the solver could not decide.
+pub fn admissible_with(system: &System, rhs: &[f64], pinned: &[usize]) -> Option<bool> {
+    let (nb, ns, np) = (
+        system.coordinates.len(),
+        system.forces.len(),
+        system.modes.len(),
+    );
     let (mut ii, mut jj, mut vv) = (Vec::new(), Vec::new(), Vec::new());
     let mut b = Vec::new();
     // equilibrium rows: A^T X = rhs
@@ -44,33 +48,27 @@ pub fn admissible_with(system: &System, rhs: &[f64], pinned: &[(usize, Sign)]) -
         b.push(rj);
     }
     let mut row = nb;
-    for &(k, sign) in pinned {
-        let Some(r) = system
-            .forces
-            .iter()
-            .position(|f| *f == MemberForce::Moment(k))
-        else {
-            continue;
+    let mode_row =
+        |row: usize, k: usize, ii: &mut Vec<usize>, jj: &mut Vec<usize>, vv: &mut Vec<f64>| {
+            for r in 0..ns {
+                let v = system.tn[(r, k)];
+                if v != 0.0 {
+                    ii.push(row);
+                    jj.push(r);
+                    vv.push(v);
+                }
+            }
         };
-        ii.push(row);
-        jj.push(r);
-        vv.push(1.0);
-        let mp = system.sections[k].plastic_moment;
-        b.push(if sign == Sign::Positive { mp } else { -mp });
+    for &k in pinned.iter().filter(|&&k| k < np) {
+        mode_row(row, k, &mut ii, &mut jj, &mut vv);
+        b.push(system.capacities[k]);
         row += 1;
     }
     let zero_rows = row;
-    for (r, f) in system.forces.iter().enumerate() {
-        if let MemberForce::Moment(k) = *f {
-            let mp = system.sections[k].plastic_moment;
-            for s in [1.0, -1.0] {
-                ii.push(row);
-                jj.push(r);
-                vv.push(s);
-                b.push(mp);
-                row += 1;
-            }
-        }
+    for k in 0..np {
+        mode_row(row, k, &mut ii, &mut jj, &mut vv);
+        b.push(system.capacities[k]);
+        row += 1;
     }
     let a = CscMatrix::new_from_triplets(row, ns, ii, jj, vv);
     let p = CscMatrix::<f64>::zeros((ns, ns));

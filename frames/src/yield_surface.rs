@@ -1,0 +1,243 @@
+//! Yield surfaces of a critical section: the matrix `N` of system (9) for a
+//! section whose yield condition couples the bending moment `M` with a second
+//! force `F` of its element (the torque `T` of a grillage member, or the axial
+//! force of a planar member that asks for the interaction).
+//!
+//! In the normalised plane `(m, f) = (M / Mp, F / Fp)` the smooth interaction
+//! curve is replaced by a convex polygon of `k` facets (`k` a multiple of 4:
+//! 4, 8, 16, 32, ...). Each facet is one yield mode:
+//!
+//! ```text
+//! y*_i = Mp (c_i - n_i . (M / Mp, F / Fp)) >= 0,    n_i unit normal, c_i > 0 its offset
+//! ```
+//!
+//! so the column of `N` of facet `i` is `(n_i,m, n_i,f Mp / Fp)` over the
+//! section's `(M, F)`, and its capacity `X*_i = c_i Mp` (moment units, like the
+//! bending-only modes `+-M <= Mp`).
+//!
+//! **The polygon is inscribed, always.** Its vertices lie on the curve at equal
+//! steps of the curve's parameter in each quadrant, and the four points
+//! `(+-1, 0)`, `(0, +-1)` are vertices. So the polygon is a safe (inner)
+//! approximation: collapse loads computed with it are lower bounds of those of
+//! the smooth curve, rising to them as `k` doubles; pure bending (`F = 0`) and
+//! pure `F` are capacities of the curve exactly, so a member that carries no
+//! torque (or no axial force) behaves exactly as a bending-only member. The
+//! polygon is symmetric about both axes.
+//!
+//! The curves:
+//!
+//! - [`Curve::BendingTorsion`]: a thin-walled pipe in bending and torsion,
+//!   `m^2 + f^2 <= 1` (vertices at the angles `2 pi i / k`, facet offsets
+//!   `cos(pi / k)`);
+//! - [`Curve::BendingAxial`]: a thin-walled pipe in bending and axial force,
+//!   `|m| <= cos(pi f / 2)`.
+//!
+//! ```
+//! use frames::yield_surface::{Curve, Polygon};
+//! let p = Polygon::new(Curve::BendingTorsion, 8).unwrap();
+//! assert_eq!(p.facets().len(), 8);
+//! // inscribed: the radius along 22.5 degrees is cos(pi / 8) < 1, along 45 degrees it is 1
+//! let r = |deg: f64| p.radius(deg.to_radians());
+//! assert!((r(22.5) - (std::f64::consts::PI / 8.0).cos()).abs() < 1e-15);
+//! assert!((r(45.0) - 1.0).abs() < 1e-15);
+//! assert!(Polygon::new(Curve::BendingTorsion, 6).is_err());
+//! ```
+
+use std::f64::consts::PI;
+
+/// The smooth interaction curve a polygon approximates.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Curve {
+    /// `(M/Mp)^2 + (T/Tp)^2 <= 1` (thin-walled pipe, bending and torsion).
+    BendingTorsion,
+    /// `|M/Mp| <= cos(pi N / (2 Np))` (thin-walled pipe, bending and axial force).
+    BendingAxial,
+}
+
+impl Curve {
+    /// The point of the curve in the first quadrant at parameter `t` in `[0, 1]`,
+    /// from `(1, 0)` at `t = 0` to `(0, 1)` at `t = 1`.
+    fn point(self, t: f64) -> [f64; 2] {
+        match self {
+            Curve::BendingTorsion => {
+                let a = 0.5 * PI * t;
+                [a.cos(), a.sin()]
+            }
+            Curve::BendingAxial => [(0.5 * PI * t).cos(), t],
+        }
+    }
+
+    /// A short description, e.g. `(M/Mp)^2 + (T/Tp)^2 <= 1`.
+    pub fn describe(self) -> &'static str {
+        match self {
+            Curve::BendingTorsion => "(M/Mp)^2 + (T/Tp)^2 <= 1",
+            Curve::BendingAxial => "|M/Mp| <= cos(pi N / (2 Np))",
+        }
+    }
+
+    /// The name of the second force: `"T"` or `"N"`.
+    pub fn second(self) -> &'static str {
+        match self {
+            Curve::BendingTorsion => "T",
+            Curve::BendingAxial => "N",
+        }
+    }
+}
+
+/// One facet: `n . (m, f) <= offset` in the normalised plane.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Facet {
+    /// Unit normal `(n_m, n_f)`.
+    pub normal: [f64; 2],
+    /// Offset `c > 0` (distance of the facet from the origin).
+    pub offset: f64,
+}
+
+impl Facet {
+    /// The angle of the normal in degrees, in `[0, 360)`.
+    pub fn angle_degrees(&self) -> f64 {
+        let a = self.normal[1].atan2(self.normal[0]).to_degrees();
+        if a < 0.0 {
+            a + 360.0
+        } else {
+            a
+        }
+    }
+}
+
+/// An inscribed polygon of `k` facets approximating a [`Curve`].
+#[derive(Clone, Debug, PartialEq)]
+pub struct Polygon {
+    curve: Curve,
+    facets: Vec<Facet>,
+}
+
+impl Polygon {
+    /// The polygon of `k` facets; `k` must be a multiple of 4, from 4 to 256
+    /// (every facet is a complementary variable of the PLCP, held densely).
+    pub fn new(curve: Curve, k: usize) -> Result<Polygon, String> {
+        if !(4..=256).contains(&k) || k & 3 != 0 {
+            return Err(format!(
+                "the number of facets must be a multiple of 4 from 4 to 256 (4, 8, 16, 32, ...), got {k}"
+            ));
+        }
+        let q = k / 4;
+        // vertices counter-clockwise, starting at (1, 0)
+        let mut first: Vec<[f64; 2]> = (0..=q).map(|i| curve.point(i as f64 / q as f64)).collect();
+        // exact axis points (cos(pi/2) is not exactly 0)
+        first[0] = [1.0, 0.0];
+        first[q] = [0.0, 1.0];
+        let mut vertices: Vec<[f64; 2]> = first.clone();
+        vertices.extend(first.iter().rev().skip(1).map(|v| [-v[0], v[1]]));
+        let lower: Vec<[f64; 2]> = vertices[1..vertices.len() - 1]
+            .iter()
+            .rev()
+            .map(|v| [v[0], -v[1]])
+            .collect();
+        vertices.extend(lower);
+        debug_assert_eq!(vertices.len(), k);
+        let facets = (0..k)
+            .map(|i| {
+                let (a, b) = (vertices[i], vertices[(i + 1) % k]);
+                // outward normal of the edge a -> b (counter-clockwise polygon)
+                let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
+                let len = dx.hypot(dy);
+                let normal = [dy / len, -dx / len];
+                let offset = 0.5 * (normal[0] * (a[0] + b[0]) + normal[1] * (a[1] + b[1]));
+                Facet { normal, offset }
+            })
+            .collect();
+        Ok(Polygon { curve, facets })
+    }
+
+    /// The curve approximated.
+    pub fn curve(&self) -> Curve {
+        self.curve
+    }
+
+    /// The facets, counter-clockwise from the one next to `(1, 0)` in the first quadrant.
+    pub fn facets(&self) -> &[Facet] {
+        &self.facets
+    }
+
+    /// The distance from the origin to the boundary along the direction `angle`
+    /// (radians) in the normalised plane.
+    pub fn radius(&self, angle: f64) -> f64 {
+        let (c, s) = (angle.cos(), angle.sin());
+        self.facets
+            .iter()
+            .filter_map(|f| {
+                let p = f.normal[0] * c + f.normal[1] * s;
+                (p > 0.0).then(|| f.offset / p)
+            })
+            .fold(f64::INFINITY, f64::min)
+    }
+
+    /// The largest `s` with `s (m, f)` inside the polygon (the load factor of a
+    /// section whose normalised forces are `(m, f)` per unit load).
+    pub fn load_factor(&self, m: f64, f: f64) -> f64 {
+        self.facets
+            .iter()
+            .filter_map(|fa| {
+                let p = fa.normal[0] * m + fa.normal[1] * f;
+                (p > 0.0).then(|| fa.offset / p)
+            })
+            .fold(f64::INFINITY, f64::min)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn inscribed_and_symmetric() {
+        for curve in [Curve::BendingTorsion, Curve::BendingAxial] {
+            for k in [4, 8, 16, 32, 64] {
+                let p = Polygon::new(curve, k).unwrap();
+                // the axis points are capacities exactly
+                assert_eq!(p.load_factor(1.0, 0.0), 1.0, "{curve:?} {k}");
+                assert!((p.load_factor(0.0, 1.0) - 1.0).abs() < 1e-15);
+                assert!((p.load_factor(-1.0, 0.0) - 1.0).abs() < 1e-15);
+                // inscribed: every point of the boundary lies inside the curve
+                for i in 0..720 {
+                    let a = i as f64 * PI / 360.0;
+                    let r = p.radius(a);
+                    let (m, f) = (r * a.cos(), r * a.sin());
+                    let inside = match curve {
+                        Curve::BendingTorsion => m * m + f * f <= 1.0 + 1e-12,
+                        Curve::BendingAxial => m.abs() <= (0.5 * PI * f.abs()).cos() + 1e-12,
+                    };
+                    assert!(inside, "{curve:?} k = {k}, angle {a}: ({m}, {f})");
+                    // symmetric about both axes
+                    assert!((p.radius(-a) - r).abs() < 1e-12);
+                    assert!((p.radius(PI - a) - r).abs() < 1e-12);
+                }
+                for f in p.facets() {
+                    assert!((f.normal[0].hypot(f.normal[1]) - 1.0).abs() < 1e-15);
+                    assert!(f.offset > 0.0 && f.offset <= 1.0);
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn circle_offsets_and_convergence() {
+        let mut last = 0.0;
+        for k in [4, 8, 16, 32, 64, 128] {
+            let p = Polygon::new(Curve::BendingTorsion, k).unwrap();
+            for f in p.facets() {
+                assert!((f.offset - (PI / k as f64).cos()).abs() < 1e-15);
+            }
+            // the worst radius is cos(pi / k): error 1 - cos(pi/k) ~ pi^2 / (2 k^2)
+            let worst = (0..3600)
+                .map(|i| p.radius(i as f64 * PI / 1800.0))
+                .fold(f64::INFINITY, f64::min);
+            assert!((worst - (PI / k as f64).cos()).abs() < 1e-6);
+            assert!(worst > last);
+            last = worst;
+        }
+        assert!(Polygon::new(Curve::BendingAxial, 0).is_err());
+        assert!(Polygon::new(Curve::BendingAxial, 10).is_err());
+    }
+}
