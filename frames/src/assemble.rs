@@ -575,6 +575,56 @@ impl System {
             .with_range(T::zero(), lambda_max.map(T::from_f64))
     }
 
+    /// The mixed PLCP of [`System::blocks`] with `M` in sparse form (the
+    /// stored entries of the mass diagonal, `A` and `T N` only; `O(beta s + s p)`
+    /// to read the dense blocks, no dense `M`), for plcp's sparse basis.
+    ///
+    /// ```
+    /// let src = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/../scenes/cantilever.toml")).unwrap();
+    /// let scene = frames::Scene::from_toml(&src, "cantilever.toml").unwrap();
+    /// let sys = frames::System::assemble(&scene.frame);
+    /// let sparse = sys.plcp_sparse::<f64>(None).unwrap();
+    /// assert!(sparse.is_sparse());
+    /// assert_eq!(sparse.m(), sys.plcp::<f64>(None).unwrap().m());
+    /// ```
+    pub fn plcp_sparse<T: Scalar>(&self, lambda_max: Option<f64>) -> Result<Plcp<T>, PlcpError> {
+        let (nb, ns, np) = (self.coordinates.len(), self.forces.len(), self.modes.len());
+        let dim = nb + ns + np;
+        let mut triplets: Vec<(usize, usize, T)> = Vec::new();
+        for j in 0..nb {
+            triplets.push((j, j, T::from_f64(-self.mass[j])));
+        }
+        for r in 0..ns {
+            for j in 0..nb {
+                let v = self.a[(r, j)];
+                if v != 0.0 {
+                    triplets.push((j, nb + r, T::from_f64(-v)));
+                    triplets.push((nb + r, j, T::from_f64(-v)));
+                }
+            }
+            for k in 0..np {
+                let v = self.tn[(r, k)];
+                if v != 0.0 {
+                    triplets.push((nb + r, nb + ns + k, T::from_f64(v)));
+                    triplets.push((nb + ns + k, nb + r, T::from_f64(-v)));
+                }
+            }
+        }
+        let m = plcp::matrix::Csc::try_from_triplets(dim, dim, &triplets)?;
+        let qt = Col::from_fn(dim, |i| {
+            T::from_f64(if i >= nb + ns {
+                self.capacities[i - nb - ns]
+            } else {
+                0.0
+            })
+        });
+        let dt = Col::from_fn(dim, |i| {
+            T::from_f64(if i < nb { self.load[i] } else { 0.0 })
+        });
+        Plcp::mixed_sparse(m, qt.as_ref(), dt.as_ref(), self.sizes().free())?
+            .with_range(T::zero(), lambda_max.map(T::from_f64))
+    }
+
     /// The mixed PLCP as plcp's JSON input: `{"M": rows, "q", "d", "lambda_max", "free"}`.
     pub fn plcp_json(&self, lambda_max: Option<f64>) -> serde_json::Value {
         let (m, q, d) = self.blocks();
