@@ -133,6 +133,13 @@ pub(crate) trait BasisFactor<T: Scalar> {
     }
     /// `B^{-1} e_k`.
     fn unit(&self, k: usize) -> Col<T>;
+    /// Rows `rows` of `B^{-1}` (each indexed by system row), if this
+    /// representation computes them cheaper than the columns `B^{-1} e_k` the
+    /// lexicographic rule otherwise reads one by one; `None`: read columns.
+    fn inverse_rows(&self, rows: &[usize]) -> Option<Vec<Col<T>>> {
+        let _ = rows;
+        None
+    }
     /// `B^{-T} c` for `c` indexed by basis position; the result is indexed by system row.
     fn solve_transpose(&self, c: &Col<T>) -> Col<T>;
     /// The variable at position `r` (now `leaving`) is replaced by `entering`,

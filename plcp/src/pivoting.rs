@@ -379,12 +379,27 @@ impl<'a, T: Scalar> Engine<'a, T> {
         if tied.len() > 1 {
             // lexicographic rule: compare rows of B^{-1} / col_r, complementary columns first
             let order: Vec<usize> = (self.p..self.dim).chain(0..self.p).collect();
+            // a factorisation may hand over the tied rows of B^{-1} at once
+            // (one transpose solve per tied row instead of a solve per column)
+            let inv_rows = self.factor.inverse_rows(&tied);
+            let first_tied = tied.clone();
             for &k in &order {
                 if tied.len() == 1 {
                     break;
                 }
-                let inv_k = self.factor.unit(k);
-                let vals: Vec<T> = tied.iter().map(|&r| inv_k[r] / col[r]).collect();
+                let vals: Vec<T> = match &inv_rows {
+                    Some(rows) => tied
+                        .iter()
+                        .map(|&r| {
+                            let t = first_tied.iter().position(|&f| f == r).expect("tied row");
+                            rows[t][k] / col[r]
+                        })
+                        .collect(),
+                    None => {
+                        let inv_k = self.factor.unit(k);
+                        tied.iter().map(|&r| inv_k[r] / col[r]).collect()
+                    }
+                };
                 let vmin = vals.iter().fold(vals[0], |a, &b| a.min(b));
                 let vscale = vals.iter().fold(T::zero(), |a, &b| a.max(b.abs()));
                 let tol = self.tie_tol * vscale;

@@ -191,6 +191,10 @@ pub(crate) fn hager_inverse_norm1<T: Scalar>(
     est.max(alt)
 }
 
+/// Entries of a row of `B^{-1}` below this many `eps` times the row's largest
+/// are rounding noise (see [`crate::tolerance`]).
+const ROW_NOISE_EPS: f64 = 1e3;
+
 /// One pivot of the product form: the column at position `r` replaced, with
 /// `y = B^{-1} a` its nonzeros (`r` excluded) and the pivot `y_r`.
 struct Eta<T: Scalar> {
@@ -308,6 +312,29 @@ impl<T: Scalar> BasisFactor<T> for SparseLu<T> {
         let mut e = Col::zeros(self.dim);
         e[k] = T::one();
         self.solve(&e)
+    }
+
+    fn inverse_rows(&self, rows: &[usize]) -> Option<Vec<Col<T>>> {
+        // row r of B^{-1} is (B^{-T} e_r)'
+        Some(
+            rows.iter()
+                .map(|&r| {
+                    let mut e = Col::zeros(self.dim);
+                    e[r] = T::one();
+                    let mut row = self.solve_transpose(&e);
+                    // entries at the rounding level of the row are zeros of the
+                    // exact inverse (the lexicographic rule compares them exactly)
+                    let big = (0..self.dim).fold(T::zero(), |a, k| a.max(row[k].abs()));
+                    let tol = T::from_f64(ROW_NOISE_EPS) * T::eps() * big;
+                    for k in 0..self.dim {
+                        if row[k].abs() <= tol {
+                            row[k] = T::zero();
+                        }
+                    }
+                    row
+                })
+                .collect(),
+        )
     }
 
     fn solve_transpose(&self, c: &Col<T>) -> Col<T> {
