@@ -42,19 +42,8 @@ fn sparse_full_rank<T: Scalar>(problem: &Plcp<T>) -> Option<f64> {
         return None;
     };
     let p = problem.free();
-    let f = m.block(0..p, 0..p);
-    let mut col_ptr = vec![0usize];
-    let mut row_idx = Vec::with_capacity(f.nnz());
-    let mut val = Vec::with_capacity(f.nnz());
-    for j in 0..p {
-        let (r, v) = f.col(j);
-        row_idx.extend_from_slice(r);
-        val.extend_from_slice(v);
-        col_ptr.push(row_idx.len());
-    }
-    let lu = crate::basis::SparseFactor::new(p, &col_ptr, &row_idx, &val)?;
-    let cond = lu.condition();
-    (cond.is_finite() && cond * rank_tol(p, T::one()).to_f64() < 1.0).then_some(cond)
+    let cond = m.block(0..p, 0..p).lu_condition()?;
+    (cond * rank_tol(p, T::one()).to_f64() < 1.0).then_some(cond)
 }
 
 /// The start basis of the long form: free variables by a full-pivoting LU of the
