@@ -13,6 +13,9 @@ use crate::problem::Plcp;
 use crate::scalar::Scalar;
 use faer::{Col, Mat};
 
+/// Column pointers and row indices of a sparse `M`.
+type SparsePattern<'a> = (&'a [usize], &'a [usize]);
+
 /// Row and column scales of a problem.
 #[derive(Clone, Debug)]
 pub struct Equilibration {
@@ -38,7 +41,7 @@ impl Equilibration {
         let dim = problem.dim();
         // dense: |M| column-major; sparse: |M| over the stored entries of
         // each column, with their rows
-        let (a, rows): (Vec<f64>, Option<(&[usize], &[usize])>) = match problem.matrix() {
+        let (a, rows): (Vec<f64>, Option<SparsePattern<'_>>) = match problem.matrix() {
             MatrixRef::Dense(m) => {
                 let mut a: Vec<f64> = Vec::with_capacity(dim * dim);
                 for j in 0..dim {
