@@ -25,6 +25,7 @@ use super::{identity_row, BasisFactor};
 use crate::matrix::MatrixRef;
 use crate::path::Var;
 use crate::scalar::Scalar;
+use crate::tolerance::ROW_NOISE_EPS;
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::sparse::linalg::lu::simplicial::{self, SimplicialLu};
 use faer::sparse::linalg::lu::{factorize_symbolic_lu, LuSymbolicParams};
@@ -222,10 +223,6 @@ pub(crate) fn hager_inverse_norm1<T: Scalar>(
     }
     est.max(alt)
 }
-
-/// Entries of a row of `B^{-1}` below this many `eps` times the row's largest
-/// are rounding noise (see [`crate::tolerance`]).
-const ROW_NOISE_EPS: f64 = 1e3;
 
 /// One pivot of the product form: the column at position `r` replaced, with
 /// `y = B^{-1} a` its nonzeros (`r` excluded) and the pivot `y_r`.
