@@ -112,6 +112,7 @@ fn variant<T: Scalar>(
         match basis {
             BasisKind::Block => "block",
             BasisKind::Dense => "dense",
+            BasisKind::Sparse => "sparse",
         }
     );
     bench(group, BenchmarkId::new(name, n), || {

@@ -216,6 +216,7 @@ fn run_plcp<T: Scalar>(
     let b = match basis {
         BasisKind::Block => "block",
         BasisKind::Dense => "dense",
+        BasisKind::Sparse => "sparse",
     };
     Row {
         n,

@@ -129,7 +129,8 @@ pub fn build(
     times: &[f64],
 ) -> Response {
     let ns = system.sections.len();
-    let problem = system.plcp::<f64>(None).ok();
+    // sparse: O(nnz) per residual, the same numbers as the dense form
+    let problem = system.plcp_sparse::<f64>(None).ok();
     let mut intervals = Vec::new();
     let mut affine_pieces = Vec::new();
     for iv in &reading.intervals {

@@ -249,7 +249,7 @@ fn solve_standard<T: Scalar>(
     let n = problem.n();
     let start: Vec<Var> = (0..n).map(Var::W).collect();
     run_path(
-        problem.m(),
+        problem.matrix(),
         0,
         &problem.q().to_owned(),
         &problem.d().to_owned(),
@@ -289,41 +289,48 @@ pub fn solve_lcp<T: Scalar>(
         ..Info::default()
     };
     let problem = Plcp::new(lcp.m(), lcp.q(), d.as_ref())?;
-    let (status, message, point) =
-        match Engine::new(lcp.m(), 0, q.clone(), d.clone(), start, T::zero(), settings) {
-            Err(msg) => (
-                Status::IllConditioned,
-                msg,
-                Point {
-                    lambda: T::zero(),
-                    z: Col::zeros(n),
-                    w: q.clone(),
-                    u: Col::zeros(0),
-                },
-            ),
-            Ok(mut eng) => {
-                let r = start_phase(&mut eng, &q, &d, T::zero(), settings.covering.as_ref());
-                info.pivots = eng.pivots;
-                info.start_pivots = eng.pivots;
-                info.degenerate_pivots = eng.degenerate_pivots;
-                info.refactorisations = eng.refactorisations;
-                info.max_condition = eng.max_cond;
-                match r {
-                    Ok(()) => (Status::Reached, String::new(), eng.point(None)),
-                    Err(f) => {
-                        // Lemke's secondary ray is the LCP's outcome here, not "infeasible"
-                        let status = if f.status == Status::Infeasible {
-                            Status::SecondaryRay
-                        } else {
-                            f.status
-                        };
-                        let mut pt = eng.point(None);
-                        pt.lambda = T::zero();
-                        (status, f.message, pt)
-                    }
+    let (status, message, point) = match Engine::new(
+        lcp.m().into(),
+        0,
+        q.clone(),
+        d.clone(),
+        start,
+        T::zero(),
+        settings,
+    ) {
+        Err(msg) => (
+            Status::IllConditioned,
+            msg,
+            Point {
+                lambda: T::zero(),
+                z: Col::zeros(n),
+                w: q.clone(),
+                u: Col::zeros(0),
+            },
+        ),
+        Ok(mut eng) => {
+            let r = start_phase(&mut eng, &q, &d, T::zero(), settings.covering.as_ref());
+            info.pivots = eng.pivots;
+            info.start_pivots = eng.pivots;
+            info.degenerate_pivots = eng.degenerate_pivots;
+            info.refactorisations = eng.refactorisations;
+            info.max_condition = eng.max_cond;
+            match r {
+                Ok(()) => (Status::Reached, String::new(), eng.point(None)),
+                Err(f) => {
+                    // Lemke's secondary ray is the LCP's outcome here, not "infeasible"
+                    let status = if f.status == Status::Infeasible {
+                        Status::SecondaryRay
+                    } else {
+                        f.status
+                    };
+                    let mut pt = eng.point(None);
+                    pt.lambda = T::zero();
+                    (status, f.message, pt)
                 }
             }
-        };
+        }
+    };
     // w recomputed from z, so that the residual measures the equation honestly
     let mut w = lcp.q.clone();
     for j in 0..n {

@@ -60,6 +60,7 @@ pub mod error;
 pub mod io;
 pub mod lemke;
 pub mod linalg;
+pub mod matrix;
 pub mod path;
 mod pivoting;
 pub mod problem;

@@ -14,11 +14,12 @@
 //! variables (dependent equality rows, Wolfe long form) are fixed at zero: they
 //! block any step that would move them and, once out, never return.
 
-use crate::basis::{apply, var_column, BasisFactor, BlockInverse, DenseInverse};
+use crate::basis::{apply, var_column, BasisFactor, BlockInverse, DenseInverse, SparseLu};
+use crate::matrix::MatrixRef;
 use crate::path::{Breakpoint, Point, Residual, Segment, Var};
 use crate::scalar::Scalar;
 use crate::settings::Settings;
-use faer::{Col, MatRef};
+use faer::Col;
 
 /// How a trace ended.
 pub(crate) enum TraceEnd<T: Scalar> {
@@ -56,7 +57,7 @@ impl<T: Scalar> Recorder<T> {
 }
 
 pub(crate) struct Engine<'a, T: Scalar> {
-    m: MatRef<'a, T>,
+    m: MatrixRef<'a, T>,
     pub p: usize,
     pub n: usize,
     dim: usize,
@@ -110,7 +111,7 @@ impl<'a, T: Scalar> Engine<'a, T> {
 
     /// A new engine on the basis `basis` with `L` nonbasic at `lambda`.
     pub(crate) fn new(
-        m: MatRef<'a, T>,
+        m: MatrixRef<'a, T>,
         p: usize,
         q: Col<T>,
         d: Col<T>,
@@ -132,6 +133,7 @@ impl<'a, T: Scalar> Engine<'a, T> {
             factor: match settings.basis {
                 crate::settings::BasisKind::Block => Box::new(BlockInverse::new(dim)),
                 crate::settings::BasisKind::Dense => Box::new(DenseInverse::new(dim)),
+                crate::settings::BasisKind::Sparse => Box::new(SparseLu::new(dim)),
             },
             x: Col::zeros(dim),
             lambda,
@@ -377,12 +379,27 @@ impl<'a, T: Scalar> Engine<'a, T> {
         if tied.len() > 1 {
             // lexicographic rule: compare rows of B^{-1} / col_r, complementary columns first
             let order: Vec<usize> = (self.p..self.dim).chain(0..self.p).collect();
+            // a factorisation may hand over the tied rows of B^{-1} at once
+            // (one transpose solve per tied row instead of a solve per column)
+            let inv_rows = self.factor.inverse_rows(&tied);
+            let first_tied = tied.clone();
             for &k in &order {
                 if tied.len() == 1 {
                     break;
                 }
-                let inv_k = self.factor.unit(k);
-                let vals: Vec<T> = tied.iter().map(|&r| inv_k[r] / col[r]).collect();
+                let vals: Vec<T> = match &inv_rows {
+                    Some(rows) => tied
+                        .iter()
+                        .map(|&r| {
+                            let t = first_tied.iter().position(|&f| f == r).expect("tied row");
+                            rows[t][k] / col[r]
+                        })
+                        .collect(),
+                    None => {
+                        let inv_k = self.factor.unit(k);
+                        tied.iter().map(|&r| inv_k[r] / col[r]).collect()
+                    }
+                };
                 let vmin = vals.iter().fold(vals[0], |a, &b| a.min(b));
                 let vscale = vals.iter().fold(T::zero(), |a, &b| a.max(b.abs()));
                 let tol = self.tie_tol * vscale;
@@ -1130,7 +1147,7 @@ pub(crate) fn start_phase<T: Scalar>(
 /// Traces the whole path: start phase at `lambda0`, then `L` rising to `lambda_max`.
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn run_path<T: Scalar>(
-    m: MatRef<'_, T>,
+    m: MatrixRef<'_, T>,
     p: usize,
     q: &Col<T>,
     d: &Col<T>,

@@ -1,8 +1,18 @@
 //! The problem: a parametric LCP in standard or mixed form, checked at construction.
 
 use crate::error::PlcpError;
+use crate::matrix::{Csc, MatrixRef};
 use crate::scalar::Scalar;
 use faer::{Col, ColRef, Mat, MatRef};
+use std::sync::OnceLock;
+
+/// How `M` is held: dense, or sparse with a dense copy made on demand (only
+/// for callers of [`Plcp::m`]; the solvers use [`Plcp::matrix`]).
+#[derive(Clone, Debug)]
+enum Storage<T: Scalar> {
+    Dense(Mat<T>),
+    Sparse { m: Csc<T>, dense: OnceLock<Mat<T>> },
+}
 
 /// A parametric linear complementarity problem.
 ///
@@ -26,7 +36,7 @@ use faer::{Col, ColRef, Mat, MatRef};
 /// ```
 #[derive(Clone, Debug)]
 pub struct Plcp<T: Scalar> {
-    m: Mat<T>,
+    m: Storage<T>,
     q: Col<T>,
     d: Col<T>,
     free: usize,
@@ -106,10 +116,81 @@ impl<T: Scalar> Plcp<T> {
             });
         }
         check_finite_mat("M", m)?;
+        Self::checked(Storage::Dense(m.to_owned()), dim, q, d, free)
+    }
+
+    /// A mixed PLCP with a sparse `M` (see [`Csc::try_from_triplets`]): the same
+    /// problem as [`Plcp::mixed`], checked the same way, for which the solvers
+    /// touch only the stored entries. [`Plcp::m`] makes a dense copy on its first
+    /// call; the solvers never call it for [`crate::Method::Wolfe`].
+    ///
+    /// ```
+    /// use faer::col;
+    /// use plcp::matrix::Csc;
+    /// // 0 = -u + 1 - z,  w = u + L (-1) + 0 z: one free variable, one pair
+    /// let m = Csc::try_from_triplets(2, 2, &[(0, 0, -1.0), (0, 1, -1.0), (1, 0, 1.0)]).unwrap();
+    /// let problem = plcp::Plcp::mixed_sparse(m, col![1.0, 0.0].as_ref(), col![0.0, -1.0].as_ref(), 1).unwrap();
+    /// assert!(problem.is_sparse());
+    /// assert_eq!(problem.m()[(0, 1)], -1.0);
+    /// ```
+    pub fn mixed_sparse(
+        m: Csc<T>,
+        q: ColRef<'_, T>,
+        d: ColRef<'_, T>,
+        free: usize,
+    ) -> Result<Self, PlcpError> {
+        let dim = m.nrows();
+        if m.ncols() != dim {
+            return Err(PlcpError::Dimension {
+                what: "M (sparse)".into(),
+                expected: format!("a square matrix ({dim} x {dim})"),
+                found: format!("{} x {}", m.nrows(), m.ncols()),
+            });
+        }
+        // Csc keeps only finite entries (checked when it was built)
+        Self::checked(
+            Storage::Sparse {
+                m,
+                dense: OnceLock::new(),
+            },
+            dim,
+            q,
+            d,
+            free,
+        )
+    }
+
+    fn checked(
+        m: Storage<T>,
+        dim: usize,
+        q: ColRef<'_, T>,
+        d: ColRef<'_, T>,
+        free: usize,
+    ) -> Result<Self, PlcpError> {
+        if q.nrows() != dim {
+            return Err(PlcpError::Dimension {
+                what: "q".into(),
+                expected: format!("{dim} entries (the order of M)"),
+                found: format!("{} entries", q.nrows()),
+            });
+        }
+        if d.nrows() != dim {
+            return Err(PlcpError::Dimension {
+                what: "d".into(),
+                expected: format!("{dim} entries (the order of M)"),
+                found: format!("{} entries", d.nrows()),
+            });
+        }
+        if free > dim {
+            return Err(PlcpError::Invalid {
+                what: "free".into(),
+                why: format!("{free} free variables but M has order {dim}"),
+            });
+        }
         check_finite_col("q", q)?;
         check_finite_col("d", d)?;
         Ok(Self {
-            m: m.to_owned(),
+            m,
             q: q.to_owned(),
             d: d.to_owned(),
             free,
@@ -151,7 +232,7 @@ impl<T: Scalar> Plcp<T> {
 
     /// Number of complementary pairs `n`.
     pub fn n(&self) -> usize {
-        self.m.nrows() - self.free
+        self.dim() - self.free
     }
     /// Number of free variables `p`.
     pub fn free(&self) -> usize {
@@ -159,11 +240,26 @@ impl<T: Scalar> Plcp<T> {
     }
     /// Order of `M`, `p + n`.
     pub fn dim(&self) -> usize {
-        self.m.nrows()
+        self.matrix().nrows()
     }
-    /// The matrix `M`.
+    /// The matrix `M`, dense. For a sparse problem the first call makes a
+    /// dense copy (`O((p + n)^2)` memory); prefer [`Plcp::matrix`].
     pub fn m(&self) -> MatRef<'_, T> {
-        self.m.as_ref()
+        match &self.m {
+            Storage::Dense(m) => m.as_ref(),
+            Storage::Sparse { m, dense } => dense.get_or_init(|| m.to_dense()).as_ref(),
+        }
+    }
+    /// The matrix `M` as stored: a dense or a sparse view.
+    pub fn matrix(&self) -> MatrixRef<'_, T> {
+        match &self.m {
+            Storage::Dense(m) => MatrixRef::Dense(m.as_ref()),
+            Storage::Sparse { m, .. } => MatrixRef::Sparse(m),
+        }
+    }
+    /// True if `M` is held in sparse form ([`Plcp::mixed_sparse`]).
+    pub fn is_sparse(&self) -> bool {
+        matches!(self.m, Storage::Sparse { .. })
     }
     /// The constant vector `q`.
     pub fn q(&self) -> ColRef<'_, T> {
@@ -185,8 +281,17 @@ impl<T: Scalar> Plcp<T> {
     /// Converts the data to another precision (through `f64`).
     pub fn cast<U: Scalar>(&self) -> Plcp<U> {
         let dim = self.dim();
+        let m = match &self.m {
+            Storage::Dense(m) => Storage::Dense(Mat::from_fn(dim, dim, |i, j| {
+                U::from_f64(m[(i, j)].to_f64())
+            })),
+            Storage::Sparse { m, .. } => Storage::Sparse {
+                m: m.cast(),
+                dense: OnceLock::new(),
+            },
+        };
         Plcp {
-            m: Mat::from_fn(dim, dim, |i, j| U::from_f64(self.m[(i, j)].to_f64())),
+            m,
             q: Col::from_fn(dim, |i| U::from_f64(self.q[i].to_f64())),
             d: Col::from_fn(dim, |i| U::from_f64(self.d[i].to_f64())),
             free: self.free,
@@ -208,7 +313,10 @@ impl<T: Scalar> Lcp<T> {
     pub fn new(m: MatRef<'_, T>, q: ColRef<'_, T>) -> Result<Self, PlcpError> {
         let zero = Col::<T>::zeros(q.nrows());
         let p = Plcp::new(m, q, zero.as_ref())?;
-        Ok(Self { m: p.m, q: p.q })
+        Ok(Self {
+            m: p.m().to_owned(),
+            q: p.q,
+        })
     }
     /// Order of the problem.
     pub fn n(&self) -> usize {

@@ -1,5 +1,6 @@
 //! Residuals of a point against a problem: equation, feasibility, complementarity.
 
+use crate::matrix::MatrixRef;
 use crate::path::{Path, Point, Residual};
 use crate::problem::Plcp;
 use crate::scalar::Scalar;
@@ -13,12 +14,29 @@ use faer::{ColRef, MatRef};
 ///   `sw = max(1, max |w|)`;
 /// * complementarity: `max_i |z_i w_i| / (sz sw)`.
 pub fn residual<T: Scalar>(problem: &Plcp<T>, point: &Point<T>) -> Residual {
-    residual_parts(problem.m(), problem.q(), problem.d(), problem.free(), point)
+    residual_matrix(
+        problem.matrix(),
+        problem.q(),
+        problem.d(),
+        problem.free(),
+        point,
+    )
 }
 
 /// [`residual`] on the raw data: `M` of order `p + n`, `q`, `d`, `p` free variables.
 pub fn residual_parts<T: Scalar>(
     m: MatRef<'_, T>,
+    q: ColRef<'_, T>,
+    d: ColRef<'_, T>,
+    p: usize,
+    point: &Point<T>,
+) -> Residual {
+    residual_matrix(m.into(), q, d, p, point)
+}
+
+/// [`residual_parts`] for a dense or sparse `M` (a sparse one costs `O(nnz)`).
+pub fn residual_matrix<T: Scalar>(
+    m: MatrixRef<'_, T>,
     q: ColRef<'_, T>,
     d: ColRef<'_, T>,
     p: usize,
@@ -39,6 +57,17 @@ pub fn residual_parts<T: Scalar>(
             continue;
         }
         let xa = xj.abs();
+        let m = match m {
+            MatrixRef::Dense(m) => m,
+            MatrixRef::Sparse(s) => {
+                let (rows, vals) = s.col(j);
+                for (&i, &mij) in rows.iter().zip(vals) {
+                    acc[i] += mij * xj;
+                    big[i] = big[i].max(mij.abs() * xa);
+                }
+                continue;
+            }
+        };
         let col: &[T] = match m.col(j).try_as_col_major() {
             Some(c) => c.as_slice(),
             None => {

@@ -7,10 +7,14 @@
 //! few sweeps of Ruiz's method (each row and column divided by the square root
 //! of its largest entry).
 
+use crate::matrix::MatrixRef;
 use crate::path::Path;
 use crate::problem::Plcp;
 use crate::scalar::Scalar;
 use faer::{Col, Mat};
+
+/// Column pointers and row indices of a sparse `M`.
+type SparsePattern<'a> = (&'a [usize], &'a [usize]);
 
 /// Row and column scales of a problem.
 #[derive(Clone, Debug)]
@@ -31,13 +35,28 @@ fn pow2(x: f64) -> f64 {
 
 impl Equilibration {
     /// Ruiz equilibration of `M` in `sweeps` sweeps, scales rounded to powers of two.
+    ///
+    /// On a sparse problem the sweeps run over the stored entries only.
     pub fn ruiz<T: Scalar>(problem: &Plcp<T>, sweeps: usize) -> Self {
         let dim = problem.dim();
-        let m = problem.m();
-        let mut a: Vec<f64> = Vec::with_capacity(dim * dim);
-        for j in 0..dim {
-            a.extend(m.col(j).iter().map(|v| v.to_f64().abs()));
-        }
+        // dense: |M| column-major; sparse: |M| over the stored entries of
+        // each column, with their rows
+        let (a, rows): (Vec<f64>, Option<SparsePattern<'_>>) = match problem.matrix() {
+            MatrixRef::Dense(m) => {
+                let mut a: Vec<f64> = Vec::with_capacity(dim * dim);
+                for j in 0..dim {
+                    a.extend(m.col(j).iter().map(|v| v.to_f64().abs()));
+                }
+                (a, None)
+            }
+            MatrixRef::Sparse(m) => {
+                let (col_ptr, row_idx, val) = m.parts();
+                (
+                    val.iter().map(|v| v.to_f64().abs()).collect(),
+                    Some((col_ptr, row_idx)),
+                )
+            }
+        };
         let mut r = vec![1.0f64; dim];
         let mut c = vec![1.0f64; dim];
         let mut rmax = vec![0.0f64; dim];
@@ -48,13 +67,31 @@ impl Equilibration {
                 let cj = c[j];
                 let mut cm = 0.0f64;
                 // NaN compares false and is skipped; infinities are caught below
-                for ((&aij, &ri), rm) in a[j * dim..(j + 1) * dim].iter().zip(&r).zip(&mut rmax) {
-                    let v = aij * ri * cj;
-                    if v > *rm {
-                        *rm = v;
+                match rows {
+                    None => {
+                        for ((&aij, &ri), rm) in
+                            a[j * dim..(j + 1) * dim].iter().zip(&r).zip(&mut rmax)
+                        {
+                            let v = aij * ri * cj;
+                            if v > *rm {
+                                *rm = v;
+                            }
+                            if v > cm {
+                                cm = v;
+                            }
+                        }
                     }
-                    if v > cm {
-                        cm = v;
+                    Some((col_ptr, row_idx)) => {
+                        for k in col_ptr[j]..col_ptr[j + 1] {
+                            let i = row_idx[k];
+                            let v = a[k] * r[i] * cj;
+                            if v > rmax[i] {
+                                rmax[i] = v;
+                            }
+                            if v > cm {
+                                cm = v;
+                            }
+                        }
                     }
                 }
                 cmax[j] = cm;
@@ -92,11 +129,23 @@ impl Equilibration {
         let dim = problem.dim();
         let r: Vec<T> = self.rows.iter().map(|&v| T::from_f64(v)).collect();
         let c: Vec<T> = self.cols.iter().map(|&v| T::from_f64(v)).collect();
-        let m = Mat::from_fn(dim, dim, |i, j| r[i] * problem.m()[(i, j)] * c[j]);
         let q = Col::from_fn(dim, |i| r[i] * problem.q()[i]);
         let d = Col::from_fn(dim, |i| r[i] * problem.d()[i]);
         // `None` when the scaled data leave the range of the type (overflow)
-        Plcp::mixed(m.as_ref(), q.as_ref(), d.as_ref(), problem.free())
+        let scaled = match problem.matrix() {
+            MatrixRef::Dense(m) => {
+                let m = Mat::from_fn(dim, dim, |i, j| r[i] * m[(i, j)] * c[j]);
+                Plcp::mixed(m.as_ref(), q.as_ref(), d.as_ref(), problem.free())
+            }
+            MatrixRef::Sparse(m) => {
+                let m = m.map(|i, j, v| r[i] * v * c[j]);
+                if m.parts().2.iter().any(|v| !v.is_finite()) {
+                    return None;
+                }
+                Plcp::mixed_sparse(m, q.as_ref(), d.as_ref(), problem.free())
+            }
+        };
+        scaled
             .and_then(|pr| pr.with_range(problem.lambda0(), problem.lambda_max()))
             .ok()
     }

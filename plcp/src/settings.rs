@@ -86,6 +86,11 @@ pub enum BasisKind {
     Block,
     /// The explicit dense inverse: `O((p+n)^2)` per pivot.
     Dense,
+    /// A sparse LU factorisation of the basis with product-form updates
+    /// between refactorisations: `O(nnz(L + U) + nnz(etas))` per solve. For
+    /// sparse problems ([`crate::Plcp::mixed_sparse`]) whose bases keep many
+    /// matrix columns, e.g. Wolfe's long form of frames' system (9).
+    Sparse,
 }
 
 impl<T: Scalar> Default for Settings<T> {

@@ -10,6 +10,8 @@
 //! | tie tolerance | two ratios `t_i`, `t_j` of the minimum-ratio test are tied (and go to the lexicographic rule) | `abs(t_i - t_j) <= tie_tol_eps * eps * max(1, abs(t_min), scale)` (default `tie_tol_eps = 1e3`) |
 //! | lexicographic tie | two scaled rows of the basis inverse are equal in an entry | same tie tolerance, relative to the largest entry compared |
 //! | zero step | a step is degenerate (zero length) | ratio `<= tie tolerance` |
+//! | zero in a row of `B^{-1}` | the sparse basis hands the lexicographic rule rows of `B^{-1}`; an entry is zero | `abs(v) <= ROW_NOISE_EPS * eps * max abs(row)` ([`ROW_NOISE_EPS`] `= 1e3`) |
+//! | sparse full rank | Wolfe's start skips the dense LU of a sparse free block | sparse LU succeeds and `cond_1 * rank_tol(p, 1) < 1` |
 //! | rank of the free block | a pivot of the full-pivoting LU counts | `abs(u_kk) > sqrt(eps) * max abs(u_11)`... see [`rank_tol`] |
 //! | condition | a basis is ill-conditioned | `cond_1(B) * eps > max_cond_eps` (default `1e-2`) |
 //! | residuals at breakpoints | reported, measured by the trace with the next column solve (one pass over the basic columns, on the scaled system) | equation row `r` relative to `max(1, abs(q_r), abs(L d_r), abs((B x)_r))`: at least the componentwise (Oettli-Prager) backward error, up to the floor of 1 |
@@ -19,6 +21,11 @@
 //! | breakpoint re-intersection | Lemke on the Schur reduction: a breakpoint moves to where the polished segment's leaving variable is zero | only by `<= sqrt(eps) * max(1, abs(L))` |
 
 use crate::scalar::Scalar;
+
+/// Entries of a row of `B^{-1}` (sparse basis, lexicographic rule) below this
+/// many `eps` times the row's largest entry are rounding noise, zeros of the
+/// exact inverse.
+pub const ROW_NOISE_EPS: f64 = 1e3;
 
 /// The rank tolerance of the full-pivoting LU of a free block: `dim * eps * 1e2`
 /// times the largest pivot. Pivots below it count as zero.
