@@ -1014,16 +1014,23 @@ pub fn run_one(sum: &mut Summary, seed: u64, i: u64, scenes: &[String]) -> usize
     target
 }
 
-/// Reads every `*.toml` in `dir` (sorted by name); empty if absent.
+/// Reads every `*.toml` in `dir` and its subfolders (the stiff and pipe-whip
+/// scenes, planar and grillage), sorted by path; empty if absent.
 pub fn read_scenes(dir: &std::path::Path) -> Vec<String> {
-    let mut files: Vec<_> = std::fs::read_dir(dir)
-        .map(|rd| {
-            rd.filter_map(|e| e.ok())
-                .map(|e| e.path())
-                .filter(|p| p.extension().is_some_and(|x| x == "toml"))
-                .collect()
-        })
-        .unwrap_or_default();
+    fn collect(dir: &std::path::Path, files: &mut Vec<std::path::PathBuf>) {
+        let Ok(rd) = std::fs::read_dir(dir) else {
+            return;
+        };
+        for p in rd.filter_map(|e| e.ok()).map(|e| e.path()) {
+            if p.is_dir() {
+                collect(&p, files);
+            } else if p.extension().is_some_and(|x| x == "toml") {
+                files.push(p);
+            }
+        }
+    }
+    let mut files = Vec::new();
+    collect(dir, &mut files);
     files.sort();
     files
         .iter()
