@@ -18,7 +18,10 @@
 //! Prints, per scene: the sizes of system (9) before and after leaving out what
 //! the scene does not need, the hinges in order of formation, and the events
 //! where a flowing hinge leaves yield (deactivations: system (9) assumes none);
-//! then convergence tables in the number of facets and of elements. Writes the
+//! then convergence tables in the number of facets and of elements; then the
+//! non-deactivation check by the library's time-stepping integrator
+//! (`frames::timestep`, at two step sizes) against the PLCP path's first
+//! unloading, and an independent cross-check by a Clarabel-based stepper. Writes the
 //! reports and plots (geometry with the hinge order, activation diagram,
 //! profiles, moments, displacements) to `out/pipe-whip/<scene>/`.
 
@@ -292,21 +295,115 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     println!("System (9) assumes that a flowing hinge keeps accelerating or rotates on at a");
     println!("constant rate; where its path shows a flowing section leaving yield, the path");
     println!("beyond is not the response (the hinge would decelerate, x*_dd < 0, which (9)");
-    println!("excludes). The project's time-stepping integrator is not on this branch; this");
-    println!("check steps the velocity-level rigid-plastic problem instead (implicit Euler,");
-    println!("one convex QP per step, Clarabel): find v and plastic rates r >= 0 with");
-    println!("  M (v - v_old) / dt + A' X = a_o lambda(t),  A v = T N r,  y* = X* - (T N)' X >= 0,  y*' r = 0");
-    println!("which lets a flowing hinge decelerate. Reported: the first time a section's plastic");
-    println!("rate (of one yield mode) falls below 97 % of its peak (a slowing hinge), against the first unloading on");
-    println!("the PLCP path.");
+    println!("excludes). The non-deactivation check is the library integrator frames::timestep");
+    println!("(backward Euler at velocity level, one mixed LCP per step solved by plcp, warm-");
+    println!("started; hinges may unload), from rest, at two step sizes h and h/2:");
+    println!("  M (v - v_old) / h + A' X = a_o lambda_n,  A v = T N r,  y* = X* - (T N)' X >= 0,  r >= 0,  y*' r = 0");
+    println!("Columns: PLCP = first unloading on the path of (9) (its reading, Lambda = t);");
+    println!("decel = first flow_decelerated event (a flowing yield mode's rate below its running");
+    println!(
+        "peak by more than {DECEL_TOL:.0e} relative: x*_dd < 0); stop = first flow_stopped event"
+    );
+    println!("(a mode's rate back to zero); hinge stop = first section whose every mode stopped.");
+    println!(
+        "{:<16} {:>9} {:>10} {:>9} {:>22} {:>22} {:>22} {:>9} {:>8}",
+        "scene",
+        "PLCP",
+        "h",
+        "path bp",
+        "decel Lambda (node)",
+        "stop Lambda (node)",
+        "hinge stop",
+        "disp err",
+        "seconds"
+    );
+    for (name, a) in &analyses {
+        let plcp_first = a.reading.deactivations().first().map(|(l, e)| {
+            (
+                *l,
+                a.scene.frame.nodes[a.reading.groups[e.group].node]
+                    .id
+                    .clone(),
+            )
+        });
+        let t_end = horizon(a);
+        for (i, h) in [t_end / STEPS, 0.5 * t_end / STEPS].into_iter().enumerate() {
+            let r = library_run(a, h, t_end)?;
+            let node = |section: usize| {
+                a.scene.frame.nodes[a.system.sections[section].node]
+                    .id
+                    .clone()
+            };
+            let fmt = |e: Option<&frames::timestep::ModeEvent>| match e {
+                Some(e) => format!("{} ({})", g6(e.lambda), node(e.section)),
+                None => "none".into(),
+            };
+            let c = frames::timestep::compare(a, &r);
+            let decel = r.decelerations().first().copied();
+            // the last breakpoint of the PLCP path at or before the deceleration
+            let bp = decel.and_then(|e| {
+                a.reading
+                    .breakpoints
+                    .iter()
+                    .map(|b| b.lambda)
+                    .rfind(|&l| l <= e.lambda)
+            });
+            println!(
+                "{:<16} {:>9} {:>10} {:>9} {:>22} {:>22} {:>22} {:>9} {:>8}",
+                if i == 0 { *name } else { "" },
+                if i == 0 {
+                    plcp_first.as_ref().map_or("none".into(), |(l, _)| g6(*l))
+                } else {
+                    String::new()
+                },
+                format!("{h:.2e}"),
+                bp.map_or("-".into(), g6),
+                fmt(decel),
+                fmt(r.deactivations().first().copied()),
+                fmt(first_hinge_stop(a, &r)),
+                format!("{:.1e}", c.displacement_error / c.displacement_scale),
+                format!("{:.2}", r.seconds)
+            );
+            if !r.outcome.is_completed() {
+                return Err(format!("{name}: time stepping stopped: {:?}", r.outcome).into());
+            }
+        }
+    }
+    println!(
+        "(Lambda = lambda(t) = t. Stepped to t = 1.3 x the PLCP first unloading, or 1.3 x the"
+    );
+    println!("last breakpoint; {STEPS} and {} steps. disp err: largest nodal translation against the exact", 2.0 * STEPS);
+    println!(
+        "PLCP response at its first unloading (or the end), relative to the largest translation."
+    );
+    println!(
+        "An event is seen at the end of its step: resolution h. path bp: the PLCP path's last"
+    );
+    println!(
+        "breakpoint at or before the first deceleration. On the L-shaped cantilever the root's"
+    );
+    println!(
+        "flow runs on two facets of its bending-torsion polygon from Lambda 1.28; one facet's"
+    );
+    println!(
+        "x*_dd falls to zero at the path's breakpoint 1.4782 and in the stepped response its rate"
+    );
+    println!(
+        "then decreases (and stops, leaving yield, at 1.88) while the root keeps flowing on the"
+    );
+    println!(
+        "other facet: a deactivation of a yield mode that (9) cannot follow, not flagged by the"
+    );
+    println!("PLCP reading, which reads unloading per section (its first is at B, Lambda 3.18).)");
+    println!();
+    println!("==== cross-check: an independent stepper (Clarabel interior-point QP) ====");
+    println!("The same implicit-Euler velocity-level problem, each step solved as a convex QP by");
+    println!("Clarabel (no plcp, no warm start, lambda at the step end instead of its mean).");
+    println!("Reported: the first time a section's plastic rate (of one yield mode) falls below");
+    println!("97 % of its peak (a slowing hinge), against the first unloading on the PLCP path.");
     println!(
         "{:<16} {:>8} {:>10} {:>24} {:>26} {:>12}",
-        "scene",
-        "dt",
-        "steps",
-        "PLCP first unloading",
-        "time stepping: first slowing",
-        "|dv| before"
+        "scene", "dt", "steps", "PLCP first unloading", "Clarabel: first slowing", "|dv| before"
     );
     for (name, a) in &analyses {
         let plcp_first = a.reading.deactivations().first().map(|(l, e)| {
@@ -515,4 +612,85 @@ fn plcp_accelerations(a: &Analysis, lambda: f64) -> Vec<f64> {
             b + s * lambda
         })
         .collect()
+}
+
+/// Steps per run at the coarser step size (the finer has twice as many).
+const STEPS: f64 = 1000.0;
+/// Relative drop of a flowing mode's rate below its peak reported as a deceleration.
+const DECEL_TOL: f64 = 1e-6;
+
+fn g6(x: f64) -> String {
+    format!("{x:.4}")
+}
+
+/// End time of the runs: 1.3 times the PLCP path's first unloading, or its last breakpoint.
+fn horizon(a: &Analysis) -> f64 {
+    match a.reading.deactivations().first() {
+        Some((l, _)) => 1.3 * a.scene.history.time_at(*l).unwrap_or(*l),
+        None => {
+            1.3 * a
+                .reading
+                .breakpoints
+                .last()
+                .map(|b| b.lambda)
+                .unwrap_or(1.0)
+        }
+    }
+}
+
+/// The library integrator from rest to `t_end` with step `h`.
+fn library_run(
+    a: &Analysis,
+    h: f64,
+    t_end: f64,
+) -> Result<frames::timestep::StepResponse, Box<dyn std::error::Error>> {
+    use frames::timestep::{StepOptions, StepState, TimeStepping};
+    let options = StepOptions {
+        h,
+        t_end,
+        decel_tol: DECEL_TOL,
+        ..StepOptions::default()
+    };
+    Ok(TimeStepping::new(&a.system, &a.scene.history, &options)?
+        .run(&StepState::rest(&a.system))?)
+}
+
+/// The first `flow_stopped` event after which no mode of its section flows: the
+/// hinge (not just one facet of its polygon) stops.
+fn first_hinge_stop<'a>(
+    a: &Analysis,
+    r: &'a frames::timestep::StepResponse,
+) -> Option<&'a frames::timestep::ModeEvent> {
+    use frames::timestep::ModeEventKind;
+    let mut flowing = vec![false; a.system.modes.len()];
+    let mut i = 0;
+    while i < r.events.len() {
+        // the events of one step: starts first, then the stops
+        let t = r.events[i].t;
+        let j = i + r.events[i..].iter().take_while(|e| e.t == t).count();
+        for e in &r.events[i..j] {
+            if e.kind == ModeEventKind::FlowStarted {
+                flowing[e.mode] = true;
+            }
+        }
+        for e in &r.events[i..j] {
+            if e.kind == ModeEventKind::FlowStopped {
+                flowing[e.mode] = false;
+            }
+        }
+        for e in &r.events[i..j] {
+            if e.kind == ModeEventKind::FlowStopped
+                && !a
+                    .system
+                    .modes
+                    .iter()
+                    .enumerate()
+                    .any(|(k, m)| m.section == e.section && flowing[k])
+            {
+                return Some(e);
+            }
+        }
+        i = j;
+    }
+    None
 }

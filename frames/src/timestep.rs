@@ -76,7 +76,7 @@ use crate::analysis::Analysis;
 use crate::assemble::{Sign, System};
 use crate::error::FramesError;
 use crate::integrate::{integrate, AffinePiece};
-use crate::model::{Component, History};
+use crate::model::{History, Model};
 use crate::report::format_number;
 use faer::{Col, Mat};
 use plcp::{Method, Plcp, Settings, Status, Var};
@@ -689,13 +689,14 @@ pub fn plcp_valid_until(analysis: &Analysis) -> Option<(f64, f64)> {
     Some((lambda, t))
 }
 
-/// Largest translation (x, y) of any node, `max |q_j|` over translational coordinates.
+/// Largest translation of any node, `max |q_j|` over translational coordinates
+/// (x and y of a planar frame, z of a grillage; never a rotation).
 pub fn largest_translation(system: &System, q: &[f64]) -> f64 {
     system
         .coordinates
         .iter()
         .zip(q)
-        .filter(|(c, _)| c.component != Component::Rz)
+        .filter(|(c, _)| !c.component.is_rotation())
         .fold(0.0, |a, (_, x)| a.max(x.abs()))
 }
 
@@ -816,7 +817,8 @@ impl Continuation {
         format!("{} ({} {})", n.node, n.member, n.end.as_str())
     }
 
-    /// Displacements per node `[x, y, rz]` at the end of the run.
+    /// Displacements per node at the end of the run, in the slots of
+    /// [`crate::model::Component::index`]: `[x, y, rz]` (planar) or `[z, rx, ry]` (grillage).
     pub fn end_displacements(&self, analysis: &Analysis) -> Vec<[f64; 3]> {
         let mut out = vec![[0.0; 3]; analysis.scene.frame.nodes.len()];
         for (j, c) in analysis.system.coordinates.iter().enumerate() {
@@ -856,16 +858,33 @@ impl Continuation {
         }
         let fr = &analysis.scene.frame;
         let d = self.end_displacements(analysis);
+        let grillage = analysis.system.model == Model::Grillage;
+        // the translation of a node: (x, y) in plane, z out of plane
+        let size = |x: &[f64; 3]| {
+            if grillage {
+                x[0].abs()
+            } else {
+                x[0].hypot(x[1])
+            }
+        };
         if let Some((i, _)) = d
             .iter()
             .enumerate()
-            .max_by(|a, b| a.1[0].hypot(a.1[1]).total_cmp(&b.1[0].hypot(b.1[1])))
+            .max_by(|a, b| size(a.1).total_cmp(&size(b.1)))
         {
-            let _ = writeln!(
-                s,
-                "  at t = {}: largest displacement at {}: x = {:.6}, y = {:.6}",
-                r.end.t, fr.nodes[i].id, d[i][0], d[i][1]
-            );
+            let _ = if grillage {
+                writeln!(
+                    s,
+                    "  at t = {}: largest displacement at {}: z = {:.6}",
+                    r.end.t, fr.nodes[i].id, d[i][0]
+                )
+            } else {
+                writeln!(
+                    s,
+                    "  at t = {}: largest displacement at {}: x = {:.6}, y = {:.6}",
+                    r.end.t, fr.nodes[i].id, d[i][0], d[i][1]
+                )
+            };
         }
         s
     }
@@ -887,11 +906,16 @@ impl Continuation {
             })
             .collect();
         let d = self.end_displacements(analysis);
+        let keys = if analysis.system.model == Model::Grillage {
+            ["z", "rx", "ry"]
+        } else {
+            ["x", "y", "rz"]
+        };
         let nodes: Vec<Value> = fr
             .nodes
             .iter()
             .zip(&d)
-            .map(|(n, x)| json!({"node": n.id, "x": x[0], "y": x[1], "rz": x[2]}))
+            .map(|(n, x)| json!({"node": n.id, keys[0]: x[0], keys[1]: x[1], keys[2]: x[2]}))
             .collect();
         let (status, message) = match &r.outcome {
             StepOutcome::Completed => ("completed", String::new()),
