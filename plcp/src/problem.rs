@@ -95,26 +95,8 @@ impl<T: Scalar> Plcp<T> {
                 found: format!("{} x {}", m.nrows(), m.ncols()),
             });
         }
-        if q.nrows() != dim {
-            return Err(PlcpError::Dimension {
-                what: "q".into(),
-                expected: format!("{dim} entries (the order of M)"),
-                found: format!("{} entries", q.nrows()),
-            });
-        }
-        if d.nrows() != dim {
-            return Err(PlcpError::Dimension {
-                what: "d".into(),
-                expected: format!("{dim} entries (the order of M)"),
-                found: format!("{} entries", d.nrows()),
-            });
-        }
-        if free > dim {
-            return Err(PlcpError::Invalid {
-                what: "free".into(),
-                why: format!("{free} free variables but M has order {dim}"),
-            });
-        }
+        // shapes before the (costlier) finiteness of M, as the errors rank
+        Self::check_shapes(dim, q, d, free)?;
         check_finite_mat("M", m)?;
         Self::checked(Storage::Dense(m.to_owned()), dim, q, d, free)
     }
@@ -160,13 +142,13 @@ impl<T: Scalar> Plcp<T> {
         )
     }
 
-    fn checked(
-        m: Storage<T>,
+    /// `q` and `d` of length `dim`, at most `dim` free variables.
+    fn check_shapes(
         dim: usize,
         q: ColRef<'_, T>,
         d: ColRef<'_, T>,
         free: usize,
-    ) -> Result<Self, PlcpError> {
+    ) -> Result<(), PlcpError> {
         if q.nrows() != dim {
             return Err(PlcpError::Dimension {
                 what: "q".into(),
@@ -187,6 +169,17 @@ impl<T: Scalar> Plcp<T> {
                 why: format!("{free} free variables but M has order {dim}"),
             });
         }
+        Ok(())
+    }
+
+    fn checked(
+        m: Storage<T>,
+        dim: usize,
+        q: ColRef<'_, T>,
+        d: ColRef<'_, T>,
+        free: usize,
+    ) -> Result<Self, PlcpError> {
+        Self::check_shapes(dim, q, d, free)?;
         check_finite_col("q", q)?;
         check_finite_col("d", d)?;
         Ok(Self {
