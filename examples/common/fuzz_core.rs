@@ -811,18 +811,28 @@ fn run_dat(cx: &mut Ctx, rng: &mut ChaCha8Rng, bytes: &[u8]) {
 pub const MAX_FUZZ_ELEMENTS: i64 = 2000;
 
 fn too_many_elements(text: &str) -> bool {
+    // TOML integers: decimal with `_` and `+`, or 0x / 0o / 0b literals
+    let parse = |v: &str| -> Option<i64> {
+        let v: String = v
+            .trim()
+            .chars()
+            .take_while(|c| c.is_ascii_alphanumeric() || *c == '_' || *c == '+')
+            .filter(|c| *c != '_' && *c != '+')
+            .collect();
+        let (digits, radix) = match v.get(..2) {
+            Some("0x") => (&v[2..], 16),
+            Some("0o") => (&v[2..], 8),
+            Some("0b") => (&v[2..], 2),
+            _ => (v.as_str(), 10),
+        };
+        i64::from_str_radix(digits, radix).ok()
+    };
     text.lines().any(|l| {
         let l = l.trim_start();
         l.starts_with("elements")
             && l.split_once('=').is_some_and(|(_, v)| {
-                let v: String = v
-                    .trim()
-                    .chars()
-                    .take_while(|c| c.is_ascii_digit() || *c == '_' || *c == '+')
-                    .collect();
-                v.replace(['_', '+'], "")
-                    .parse::<i64>()
-                    .map_or(v.len() > 4, |n| n > MAX_FUZZ_ELEMENTS)
+                // unparsable or beyond i64: let the reader judge it, unless long
+                parse(v).map_or(v.trim().len() > 6, |n| n > MAX_FUZZ_ELEMENTS)
             })
     })
 }
