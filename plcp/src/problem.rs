@@ -88,17 +88,10 @@ impl<T: Scalar> Plcp<T> {
         free: usize,
     ) -> Result<Self, PlcpError> {
         let dim = m.nrows();
-        if m.ncols() != dim {
-            return Err(PlcpError::Dimension {
-                what: "M".into(),
-                expected: format!("a square matrix ({dim} x {dim})"),
-                found: format!("{} x {}", m.nrows(), m.ncols()),
-            });
-        }
         // shapes before the (costlier) finiteness of M, as the errors rank
-        Self::check_shapes(dim, q, d, free)?;
+        Self::check_shapes("M", (dim, m.ncols()), q, d, free)?;
         check_finite_mat("M", m)?;
-        Self::checked(Storage::Dense(m.to_owned()), dim, q, d, free)
+        Self::checked(Storage::Dense(m.to_owned()), q, d, free)
     }
 
     /// A mixed PLCP with a sparse `M` (see [`Csc::try_from_triplets`]): the same
@@ -121,34 +114,35 @@ impl<T: Scalar> Plcp<T> {
         d: ColRef<'_, T>,
         free: usize,
     ) -> Result<Self, PlcpError> {
-        let dim = m.nrows();
-        if m.ncols() != dim {
-            return Err(PlcpError::Dimension {
-                what: "M (sparse)".into(),
-                expected: format!("a square matrix ({dim} x {dim})"),
-                found: format!("{} x {}", m.nrows(), m.ncols()),
-            });
-        }
+        Self::check_shapes("M (sparse)", (m.nrows(), m.ncols()), q, d, free)?;
         // Csc keeps only finite entries (checked when it was built)
         Self::checked(
             Storage::Sparse {
                 m,
                 dense: OnceLock::new(),
             },
-            dim,
             q,
             d,
             free,
         )
     }
 
-    /// `q` and `d` of length `dim`, at most `dim` free variables.
+    /// `M` (named `what`, of shape `(dim, ncols)`) square, `q` and `d` of
+    /// length `dim`, at most `dim` free variables.
     fn check_shapes(
-        dim: usize,
+        what: &str,
+        (dim, ncols): (usize, usize),
         q: ColRef<'_, T>,
         d: ColRef<'_, T>,
         free: usize,
     ) -> Result<(), PlcpError> {
+        if ncols != dim {
+            return Err(PlcpError::Dimension {
+                what: what.into(),
+                expected: format!("a square matrix ({dim} x {dim})"),
+                found: format!("{dim} x {ncols}"),
+            });
+        }
         if q.nrows() != dim {
             return Err(PlcpError::Dimension {
                 what: "q".into(),
@@ -172,14 +166,14 @@ impl<T: Scalar> Plcp<T> {
         Ok(())
     }
 
+    /// The problem from data whose shapes [`Self::check_shapes`] accepted:
+    /// `q` and `d` must still be finite.
     fn checked(
         m: Storage<T>,
-        dim: usize,
         q: ColRef<'_, T>,
         d: ColRef<'_, T>,
         free: usize,
     ) -> Result<Self, PlcpError> {
-        Self::check_shapes(dim, q, d, free)?;
         check_finite_col("q", q)?;
         check_finite_col("d", d)?;
         Ok(Self {
