@@ -280,7 +280,9 @@ struct Full {
     forces: Vec<MemberForce>,
     sections: Vec<CriticalSection>,
     modes: Vec<ModeSpec>,
-    a: Mat<f64>,
+    /// `A` by rows (forces), each row its few nonzero `(coordinate, value)`
+    /// entries: the reader and the assembly stay linear in the element count.
+    a: Vec<Vec<(usize, f64)>>,
     mass: Vec<f64>,
     load: Vec<f64>,
     supported: Vec<(usize, Component)>,
@@ -329,7 +331,7 @@ fn full_blocks(frame: &Frame) -> Full {
         Model::Planar => MemberForce::Axial(e),
         Model::Grillage => MemberForce::Torque(e),
     }));
-    let mut a = Mat::<f64>::zeros(3 * ne, coords.len());
+    let mut a: Vec<Vec<(usize, f64)>> = vec![Vec::new(); 3 * ne];
     for (e, el) in frame.elements.iter().enumerate() {
         let (c, s, h) = (el.cos, el.sin, el.length);
         let ia = index[el.from];
@@ -337,7 +339,11 @@ fn full_blocks(frame: &Frame) -> Full {
         let mut add = |row: usize, idx: Option<usize>, v: f64| {
             if let Some(j) = idx {
                 if v != 0.0 {
-                    a[(row, j)] += v;
+                    let entries = &mut a[row];
+                    match entries.iter_mut().find(|(k, _)| *k == j) {
+                        Some((_, x)) => *x += v,
+                        None => entries.push((j, v)),
+                    }
                 }
             }
         };
@@ -389,6 +395,10 @@ fn full_blocks(frame: &Frame) -> Full {
                 add(rn, ib[2], s);
             }
         }
+    }
+    // entries that cancelled (an element's two ends on one coordinate) are zeros
+    for row in &mut a {
+        row.retain(|&(_, v)| v != 0.0);
     }
     let mut modes = Vec::new();
     for (k, sec) in sections.iter().enumerate() {
@@ -536,35 +546,74 @@ pub fn massless_mechanism(frame: &Frame) -> Option<(usize, Component)> {
     if massless.is_empty() {
         return None;
     }
+    let scale = massless.iter().fold(0.0f64, |s, &j| s.max(f.load[j].abs()));
+    if scale == 0.0 {
+        return None;
+    }
     // A massless motion moves only massless coordinates; every deformation with
     // a yield mode is free at the hinges, so only the rows without one (the
-    // inextensibility of planar members) restrict it.
+    // inextensibility of planar members) restrict it: the null space of `C`,
+    // those rows on the massless columns. Columns of `C` that are zero (the
+    // rotations of a planar frame: inextensibility involves translations only)
+    // are unit null vectors; the rest is the null space of the small block `C'`
+    // of the rows and columns that touch, found densely.
     let ne = frame.elements.len();
     let rigid_rows: Vec<usize> = (0..ne)
         .filter(|&e| frame.model == Model::Planar && frame.elements[e].interaction.is_none())
         .map(|e| 2 * ne + e)
         .collect();
-    let c = Mat::from_fn(rigid_rows.len(), massless.len(), |i, k| {
-        f.a[(rigid_rows[i], massless[k])]
-    });
-    let (_, basis) = null_space(&c);
-    let scale = massless.iter().fold(0.0f64, |s, &j| s.max(f.load[j].abs()));
-    if scale == 0.0 {
+    let mut position = vec![None; f.coords.len()];
+    for (k, &j) in massless.iter().enumerate() {
+        position[j] = Some(k);
+    }
+    let mut touched_col = vec![None; massless.len()];
+    let mut touched: Vec<usize> = Vec::new();
+    let mut rows: Vec<usize> = Vec::new();
+    for &r in &rigid_rows {
+        let mut any = false;
+        for &(j, _) in &f.a[r] {
+            if let Some(k) = position[j] {
+                any = true;
+                if touched_col[k].is_none() {
+                    touched_col[k] = Some(touched.len());
+                    touched.push(k);
+                }
+            }
+        }
+        if any {
+            rows.push(r);
+        }
+    }
+    let tol = 1e-9 * scale * (massless.len() as f64);
+    // a unit null vector: the work is the load on its coordinate
+    if let Some(k) =
+        (0..massless.len()).find(|&k| touched_col[k].is_none() && f.load[massless[k]].abs() > tol)
+    {
+        let co = f.coords[massless[k]];
+        return Some((co.node, co.component));
+    }
+    if touched.is_empty() {
         return None;
     }
+    let mut c = Mat::<f64>::zeros(rows.len(), touched.len());
+    for (i, &r) in rows.iter().enumerate() {
+        for &(j, v) in &f.a[r] {
+            if let Some(col) = position[j].and_then(|k| touched_col[k]) {
+                c[(i, col)] = v;
+            }
+        }
+    }
+    let (_, basis) = null_space(&c);
     for v in &basis {
         let vn = v.iter().fold(0.0f64, |s, x| s.max(x.abs()));
-        let work: f64 = v.iter().zip(&massless).map(|(x, &j)| x * f.load[j]).sum();
-        if work.abs() > 1e-9 * scale * vn * (massless.len() as f64) {
+        let load = |t: usize| f.load[massless[touched[t]]];
+        let work: f64 = v.iter().enumerate().map(|(t, x)| x * load(t)).sum();
+        if work.abs() > tol * vn {
             // point at a loaded coordinate that moves in this mechanism
-            let k = (0..massless.len())
-                .filter(|&k| v[k] != 0.0 && f.load[massless[k]] != 0.0)
-                .max_by(|&x, &y| {
-                    (v[x] * f.load[massless[x]])
-                        .abs()
-                        .total_cmp(&(v[y] * f.load[massless[y]]).abs())
-                })?;
-            let co = f.coords[massless[k]];
+            let t = (0..touched.len())
+                .filter(|&t| v[t] != 0.0 && load(t) != 0.0)
+                .max_by(|&x, &y| (v[x] * load(x)).abs().total_cmp(&(v[y] * load(y)).abs()))?;
+            let co = f.coords[massless[touched[t]]];
             return Some((co.node, co.component));
         }
     }
@@ -620,11 +669,9 @@ impl System {
         let (nb, ns, np) = (f.coords.len(), f.forces.len(), f.modes.len());
         // variables: coordinates [0, nb), forces [nb, nb + ns), modes [nb + ns, ...)
         let mut dsu = Dsu((0..nb + ns + np).collect());
-        for r in 0..ns {
-            for j in 0..nb {
-                if f.a[(r, j)] != 0.0 {
-                    dsu.union(nb + r, j);
-                }
+        for (r, row) in f.a.iter().enumerate() {
+            for &(j, _) in row {
+                dsu.union(nb + r, j);
             }
         }
         for (k, m) in f.modes.iter().enumerate() {
@@ -678,7 +725,18 @@ impl System {
             .filter(|&k| keep[nb + ns + k] && rigid[f.modes[k].mode.section])
             .count();
         left_out.decoupled_modes = np - km.len() - tied_modes;
-        let a = Mat::from_fn(kf.len(), kc.len(), |i, j| f.a[(kf[i], kc[j])]);
+        let mut col_of = vec![None; nb];
+        for (k, &j) in kc.iter().enumerate() {
+            col_of[j] = Some(k);
+        }
+        let mut a = Mat::<f64>::zeros(kf.len(), kc.len());
+        for (i, &r) in kf.iter().enumerate() {
+            for &(j, v) in &f.a[r] {
+                if let Some(k) = col_of[j] {
+                    a[(i, k)] = v;
+                }
+            }
+        }
         let mut row_of = vec![None; ns];
         for (i, &r) in kf.iter().enumerate() {
             row_of[r] = Some(i);
@@ -891,6 +949,48 @@ mod tests {
 
     fn scene(src: &str) -> Scene {
         Scene::from_toml(src, "t.toml").unwrap()
+    }
+
+    /// A bar A-B-C along x, A clamped, B without mass, C with a lumped mass,
+    /// loaded at B by `load`.
+    fn massless_middle(load: &str) -> Result<Scene, crate::FramesError> {
+        let src = format!(
+            "[[node]]\nid = \"A\"\nx = 0.0\ny = 0.0\n[[node]]\nid = \"B\"\nx = 1.0\ny = 0.0\n\
+             [[node]]\nid = \"C\"\nx = 2.0\ny = 0.0\n\
+             [[member]]\nid = \"AB\"\nfrom = \"A\"\nto = \"B\"\nplastic_moment = 1.0\nmass_per_length = 0.0\n\
+             [[member]]\nid = \"BC\"\nfrom = \"B\"\nto = \"C\"\nplastic_moment = 1.0\nmass_per_length = 0.0\n\
+             [[mass]]\nnode = \"C\"\nm = 1.0\n\
+             [[support]]\nnode = \"A\"\nfix = [\"x\", \"y\", \"rz\"]\n\
+             [[load]]\nnode = \"B\"\n{load} = 1.0\n"
+        );
+        Scene::from_toml(&src, "t.toml")
+    }
+
+    #[test]
+    fn massless_node_held_by_inextensible_members_is_no_mechanism() {
+        // B's axial motion is fixed by AB's inextensibility (a touched column
+        // whose block has no null space); its transverse motion and rotation are
+        // free and carry no mass (untouched columns, unit null vectors)
+        assert!(massless_middle("fx").is_ok());
+        let err = massless_middle("fy").unwrap_err().to_string();
+        assert!(err.contains("node \"B\", component y"), "{err}");
+        let err = massless_middle("mz").unwrap_err().to_string();
+        assert!(err.contains("node \"B\", component rz"), "{err}");
+    }
+
+    #[test]
+    fn massless_inclined_bar_is_a_mechanism_across_its_axis() {
+        // one massless bar at 45 degrees: B may move across the bar's axis (the
+        // null space of the touched block, (-s, c)), which a horizontal load drives
+        let src = "[[node]]\nid = \"A\"\nx = 0.0\ny = 0.0\n[[node]]\nid = \"B\"\nx = 1.0\ny = 1.0\n\
+                   [[member]]\nid = \"AB\"\nfrom = \"A\"\nto = \"B\"\nplastic_moment = 1.0\nmass_per_length = 0.0\n\
+                   [[support]]\nnode = \"A\"\nfix = [\"x\", \"y\", \"rz\"]\n\
+                   [[load]]\nnode = \"B\"\nfx = 1.0\n";
+        let err = Scene::from_toml(src, "t.toml").unwrap_err().to_string();
+        assert!(err.contains("node \"B\", component x"), "{err}");
+        // along the axis the bar holds it: a load along (1, 1) does no work on (-1, 1)
+        let along = src.replace("fx = 1.0", "fx = 1.0\nfy = 1.0");
+        assert!(Scene::from_toml(&along, "t.toml").is_ok());
     }
 
     const PORTAL: &str = r#"
