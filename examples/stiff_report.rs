@@ -4,7 +4,7 @@
 //! fx128 path (for plain LCPs: the error of `z`), the largest residual
 //! (measured in fx128 on the original data), and whether the solver flagged
 //! trouble. `WRONG` marks a success whose error or residual exceeds the
-//! precision's allowance (f32 1e-2, f64 1e-8, fx128 1e-20).
+//! precision's allowance (f32 1e-2, f64 1e-8, fx128 1e-16).
 //!
 //! ```text
 //! cargo run --release --example stiff_report [-- --fast | --no-large]

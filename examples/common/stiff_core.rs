@@ -490,7 +490,10 @@ pub fn run_case(case: &Case) -> Vec<Row> {
             && !o128.status.starts_with("error")
             && o128.status != "PANIC"
         {
+            // the shorter run's end, with room for its last breakpoint to
+            // round to either side of the longer run's (both end there)
             let upto = o.reached.min(o128.reached);
+            let upto = upto + allowance(prec) * upto.abs().max(1.0);
             (
                 breakpoint_error(&o.breakpoints, &o128.breakpoints, upto),
                 "f128",

@@ -151,12 +151,49 @@ impl<T: Scalar> Segment<T> {
         lambda >= lo && (self.unbounded || lambda <= hi)
     }
     /// The solution on this segment at `lambda` (extrapolated if outside).
+    ///
+    /// Inside the segment `z` and `w` are nonnegative by construction, and a
+    /// value that rounding makes negative (a basic variable that reaches zero at
+    /// the segment's end, where a steep slope `dz/dL` turns the rounding of `L`
+    /// into a visible error) is returned as zero: the projection can only move
+    /// it closer to the exact value. Only values within that rounding (the
+    /// slope times `64 eps max(1, |L|)`, plus `64 eps` of the stored value) are
+    /// clamped, so a wrong path still shows, and only those beyond `sqrt(eps)`
+    /// of the vector's largest entry (at least 1), which a residual check would
+    /// flag; outside the segment nothing is clamped.
     pub fn eval(&self, lambda: T) -> Point<T> {
         let dl = lambda - self.lambda_from;
+        let mut z = affine(&self.z_from, &self.dz, dl);
+        let mut w = affine(&self.w_from, &self.dw, dl);
+        if self.contains(lambda) {
+            // what rounding can do: the slope times the uncertainty of `L`
+            // (64 eps relative), plus 64 eps of the stored value
+            let e64 = T::from_f64(64.0) * T::eps();
+            let dl_err = e64
+                * T::one()
+                    .max(lambda.abs())
+                    .max(self.lambda_from.abs())
+                    .max(self.lambda_to.abs());
+            // only violations the residual check would see (beyond sqrt(eps) of
+            // the vector's scale, as in `residual::residual`): smaller ones cost
+            // less than the equation error a clamp would bring
+            let visible =
+                |x: &Col<T>| T::eps().sqrt() * x.iter().fold(T::one(), |m, v| m.max(v.abs()));
+            let (vz, vw) = (visible(&z), visible(&w));
+            let clamp = |v: &mut T, from: T, slope: T, visible: T| {
+                if -*v > visible && -*v <= slope.abs() * dl_err + e64 * from.abs() {
+                    *v = T::zero();
+                }
+            };
+            for i in 0..z.nrows() {
+                clamp(&mut z[i], self.z_from[i], self.dz[i], vz);
+                clamp(&mut w[i], self.w_from[i], self.dw[i], vw);
+            }
+        }
         Point {
             lambda,
-            z: affine(&self.z_from, &self.dz, dl),
-            w: affine(&self.w_from, &self.dw, dl),
+            z,
+            w,
             u: affine(&self.u_from, &self.du, dl),
         }
     }
@@ -325,5 +362,46 @@ impl<T: Scalar> Path<T> {
     /// The segment index holding `lambda`, if any.
     pub fn segment_at(&self, lambda: T) -> Option<usize> {
         self.segments.iter().position(|s| s.contains(lambda))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// One pair, `z` basic and falling steeply to zero at `lambda_to`.
+    fn steep(z_from: f32, dz: f32, lambda_from: f32, lambda_to: f32) -> Segment<f32> {
+        Segment {
+            lambda_from,
+            lambda_to,
+            unbounded: false,
+            basis: vec![Var::Z(0)],
+            z_from: Col::from_fn(1, |_| z_from),
+            dz: Col::from_fn(1, |_| dz),
+            w_from: Col::zeros(1),
+            dw: Col::zeros(1),
+            u_from: Col::zeros(0),
+            du: Col::zeros(0),
+        }
+    }
+
+    #[test]
+    fn rounding_of_a_steep_end_is_clamped() {
+        // z = 3e6 - 1.2e7 L reaches zero at L = 0.25; a start value one ulp low
+        // (3e6 - 0.25, as a rounded solve gives) ends at -0.25, well within the
+        // slope times the rounding of L (1.2e7 * 64 eps = 92)
+        let s = steep(3e6 - 0.25, -1.2e7, 0.0, 0.25);
+        let raw = s.z_from[0] + s.dz[0] * (s.lambda_to - s.lambda_from);
+        assert_eq!(raw, -0.25);
+        assert_eq!(s.eval(s.lambda_to).z[0], 0.0);
+        // outside the segment: extrapolated, not clamped
+        assert!(s.eval(0.5).z[0] < 0.0);
+    }
+
+    #[test]
+    fn a_wrong_value_beyond_rounding_still_shows() {
+        // a path error of 1 in a value of scale 1: not what rounding of L can do
+        let s = steep(1.0, -1.0, 0.0, 2.0);
+        assert_eq!(s.eval(2.0).z[0], -1.0);
     }
 }
