@@ -14,8 +14,27 @@ pub trait Scalar: RealField + Copy + Send + Sync + core::ops::Neg<Output = Self>
     /// True for hardware types (`f32`, `f64`), on which faer's SIMD kernels run.
     const NATIVE: bool;
 
+    /// The wider type residuals of iterative refinement are accumulated in:
+    /// `f64` for `f32`, `fx128` for `f64`, and `fx128` itself for `fx128` (it
+    /// has no wider type: there the refinement is in the working precision).
+    type Wide: Scalar;
+
     /// Converts to `f64` (rounding for `fx128`).
     fn to_f64(self) -> f64;
+
+    /// Converts to the wide type (exact).
+    fn widen(self) -> Self::Wide;
+
+    /// Rounds a wide value to the working precision.
+    fn narrow(w: Self::Wide) -> Self;
+
+    /// The product `a b` in the wide type: exact for `f32` and `f64` (for `f64`
+    /// the error-free product `fl(a b) + fma(a, b, -fl(a b))`), rounded in the
+    /// working precision for `fx128`.
+    #[inline]
+    fn mul_wide(a: Self, b: Self) -> Self::Wide {
+        a.widen() * b.widen()
+    }
 
     /// Converts from `f64` (exact for `f64` and `fx128`, rounded for `f32`).
     #[inline]
@@ -77,9 +96,18 @@ pub trait Scalar: RealField + Copy + Send + Sync + core::ops::Neg<Output = Self>
 impl Scalar for f32 {
     const NAME: &'static str = "f32";
     const NATIVE: bool = true;
+    type Wide = f64;
     #[inline]
     fn to_f64(self) -> f64 {
         self as f64
+    }
+    #[inline]
+    fn widen(self) -> f64 {
+        self as f64
+    }
+    #[inline]
+    fn narrow(w: f64) -> Self {
+        w as f32
     }
     #[inline]
     fn from_f64(x: f64) -> Self {
@@ -90,9 +118,27 @@ impl Scalar for f32 {
 impl Scalar for f64 {
     const NAME: &'static str = "f64";
     const NATIVE: bool = true;
+    type Wide = faer::fx128;
     #[inline]
     fn to_f64(self) -> f64 {
         self
+    }
+    #[inline]
+    fn widen(self) -> faer::fx128 {
+        faer::fx128 { 0: self, 1: 0.0 }
+    }
+    #[inline]
+    fn narrow(w: faer::fx128) -> Self {
+        w.0 + w.1
+    }
+    #[inline]
+    fn mul_wide(a: Self, b: Self) -> faer::fx128 {
+        // |fma(a, b, -p)| <= ulp(p) / 2: already a normalised double-double
+        let p = a * b;
+        faer::fx128 {
+            0: p,
+            1: a.mul_add(b, -p),
+        }
     }
     #[inline]
     fn from_f64(x: f64) -> Self {
@@ -103,9 +149,18 @@ impl Scalar for f64 {
 impl Scalar for faer::fx128 {
     const NAME: &'static str = "f128";
     const NATIVE: bool = false;
+    type Wide = faer::fx128;
     #[inline]
     fn to_f64(self) -> f64 {
         self.0 + self.1
+    }
+    #[inline]
+    fn widen(self) -> Self {
+        self
+    }
+    #[inline]
+    fn narrow(w: Self) -> Self {
+        w
     }
 }
 
