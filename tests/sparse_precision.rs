@@ -6,7 +6,8 @@
 //! the same accelerations.
 //!
 //! `cantilever_report` (ignored) prints the figures for any size:
-//! `PLCP_CANTILEVER=1000 cargo test --release --test sparse_precision -- --ignored --nocapture`.
+//! `PLCP_CANTILEVER=1000 cargo test --release --test sparse_precision -- --ignored --nocapture`
+//! (`PLCP_CANTILEVER_F64_ONLY=1`: the f64 path alone, for profiling).
 
 use frames::{Scene, System};
 use plcp::{BasisKind, Method, Path, Scalar, Settings};
@@ -101,6 +102,9 @@ fn report(n: usize) -> (Path<f64>, f64, f64) {
         a.info.max_condition,
         a.message
     );
+    if std::env::var_os("PLCP_CANTILEVER_F64_ONLY").is_some() {
+        return (a, f64::NAN, f64::NAN);
+    }
     let (b, tb) = sparse_path::<faer::fx128>(&system);
     eprintln!(
         "cantilever {n} fx128: {:.3} s, status {}, {} pivots, residual {:.1e}",

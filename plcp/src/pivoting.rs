@@ -588,14 +588,15 @@ impl<'a, T: Scalar> Engine<'a, T> {
     /// `cond * eps > refine_cond_eps`): `r = rhs - B x` accumulated in
     /// [`Scalar::Wide`], `x += B^{-1} r` with the existing factorisation, while
     /// the correction exceeds `WIDE_REFINE_EPS` roundings of `x` and shrinks (at
-    /// most `WIDE_REFINE_STEPS` steps). With `cond * eps < 1` this converges to
+    /// most `WIDE_REFINE_STEPS` steps; the last correction is applied even when
+    /// small: `4 eps max|x|` can still be large for a row of small terms). With `cond * eps < 1` this converges to
     /// a forward error at the working precision's level (Higham, *Accuracy and
     /// Stability*, ch. 12), where residuals in the working precision stall at
     /// `cond * eps`: a degenerate basic variable (zero in exact arithmetic)
     /// then comes out at `eps` rather than at `cond * eps`.
     fn refine_values_wide(&mut self) -> Residual {
         let l = self.row_of(Var::Lambda);
-        let (mut r, mut bx) = self.wide_residual(&self.x, None);
+        let (mut r, mut bx, mut big) = self.wide_residual(&self.x, None);
         let mut last = f64::INFINITY;
         for _ in 0..WIDE_REFINE_STEPS {
             let dx = self.factor.solve(&r);
@@ -616,24 +617,28 @@ impl<'a, T: Scalar> Engine<'a, T> {
                 }
             }
             last = dnorm;
-            (r, bx) = self.wide_residual(&self.x, None);
+            (r, bx, big) = self.wide_residual(&self.x, None);
             if dnorm <= WIDE_REFINE_EPS * T::eps().to_f64() * xnorm {
                 break;
             }
         }
-        self.residual_of(&bx)
+        // relative to the terms of each row as well (a row whose terms cancel
+        // to a small B x keeps the rounding of its largest term)
+        self.residual_of_scaled(&bx, &self.x, Some(&big))
     }
 
-    /// `r = rhs - B x` accumulated in [`Scalar::Wide`] and rounded once, and
+    /// `r = rhs - B x` accumulated in [`Scalar::Wide`] and rounded once,
     /// `B x` as `rhs - r` (so that [`Self::residual_of`] reads the wide
-    /// residual). `rhs` is the basic right-hand side (`v = None`) or the column
+    /// residual), and `max_j abs(B_ij x_j)` per row (the scale of the
+    /// cancellation in row `i`: the Oettli-Prager backward error's). `rhs` is the basic right-hand side (`v = None`) or the column
     /// `a_v` of the entering variable `v` (the residual of `x = B^{-1} a_v`).
-    fn wide_residual(&self, x: &Col<T>, v: Option<Var>) -> (Col<T>, Col<T>) {
+    fn wide_residual(&self, x: &Col<T>, v: Option<Var>) -> (Col<T>, Col<T>, Col<T>) {
         let rhs: Col<T> = match v {
             Some(v) => var_column(self.m, &self.d, self.p, v),
             None => Col::from_fn(self.dim, |i| self.basic_rhs(i)),
         };
         let mut acc: Vec<T::Wide> = (0..self.dim).map(|i| rhs[i].widen()).collect();
+        let mut big: Col<T> = Col::zeros(self.dim);
         let (m, p) = (self.m, self.p);
         // the column of a matrix variable is -M[:, j] (of L: -d), so r += M x
         for (k, b) in self.basis.iter().enumerate() {
@@ -641,21 +646,22 @@ impl<'a, T: Scalar> Engine<'a, T> {
             if xk == T::zero() {
                 continue;
             }
+            let xa = xk.abs();
+            let mut add = |i: usize, a: T| {
+                acc[i] = T::wide_mul_add(acc[i], a, xk);
+                big[i] = big[i].max(a.abs() * xa);
+            };
             match *b {
-                Var::U(j) => m.for_col(j, |i, mij| acc[i] += T::mul_wide(mij, xk)),
-                Var::Z(j) => m.for_col(p + j, |i, mij| acc[i] += T::mul_wide(mij, xk)),
-                Var::Lambda => {
-                    for (i, a) in acc.iter_mut().enumerate() {
-                        *a += T::mul_wide(self.d[i], xk);
-                    }
-                }
-                Var::W(i) => acc[p + i] -= xk.widen(),
-                Var::Artificial(i) => acc[i] -= xk.widen(),
+                Var::U(j) => m.for_col(j, add),
+                Var::Z(j) => m.for_col(p + j, add),
+                Var::Lambda => (0..self.dim).for_each(|i| add(i, self.d[i])),
+                Var::W(i) => add(p + i, -T::one()),
+                Var::Artificial(i) => add(i, -T::one()),
             }
         }
         let r = Col::from_fn(self.dim, |i| T::narrow(acc[i]));
-        let bx = Col::from_fn(self.dim, |i| T::narrow(rhs[i].widen() - acc[i]));
-        (r, bx)
+        let bx = Col::from_fn(self.dim, |i| rhs[i] - r[i]);
+        (r, bx, big)
     }
 
     /// One refinement step of an entering column `col = B^{-1} a_v`, when the
@@ -663,7 +669,7 @@ impl<'a, T: Scalar> Engine<'a, T> {
     /// (`cond * eps > refine_cond_eps`); its residual `a_v - B col` is
     /// accumulated in [`Scalar::Wide`].
     fn refine_column(&mut self, v: Var, col: &mut Col<T>) {
-        let (r, _) = self.wide_residual(col, Some(v));
+        let (r, _, _) = self.wide_residual(col, Some(v));
         let dc = self.factor.solve(&r);
         let colmax = (0..self.dim).fold(T::zero(), |a, k| a.max(col[k].abs()));
         // the correction spreads rounding noise over every entry: entries below
@@ -687,12 +693,22 @@ impl<'a, T: Scalar> Engine<'a, T> {
     }
 
     fn residual_of_values(&self, bx: &Col<T>, x: &Col<T>) -> Residual {
+        self.residual_of_scaled(bx, x, None)
+    }
+
+    /// [`Self::residual_of_values`], each equation row also relative to
+    /// `big[i]` if given (`max_j abs(B_ij x_j)`, as [`crate::residual::residual`]
+    /// scales the residuals of points).
+    fn residual_of_scaled(&self, bx: &Col<T>, x: &Col<T>, big: Option<&Col<T>>) -> Residual {
         let mut eq = 0.0f64;
         for i in 0..self.dim {
             let ld = self.lambda * self.d[i];
             let rhs = self.basic_rhs(i);
             let r = (rhs - bx[i]).abs();
-            let s = T::one().max(self.q[i].abs()).max(ld.abs()).max(bx[i].abs());
+            let mut s = T::one().max(self.q[i].abs()).max(ld.abs()).max(bx[i].abs());
+            if let Some(big) = big {
+                s = s.max(big[i]);
+            }
             eq = eq.max((r / s).to_f64());
         }
         let (mut sz, mut sw) = (1.0f64, 1.0f64);

@@ -36,6 +36,17 @@ pub trait Scalar: RealField + Copy + Send + Sync + core::ops::Neg<Output = Self>
         a.widen() * b.widen()
     }
 
+    /// `acc + a b` accumulated in the wide type. For `f64` a compensated sum
+    /// (Ogita, Rump and Oishi's Dot2: the error-free product and sum of each
+    /// term collected in the low part, normalised only by [`Scalar::narrow`]),
+    /// as accurate as a sum in twice the working precision at a fraction of
+    /// double-double arithmetic's cost; a sum of such terms is only to be
+    /// read through [`Scalar::narrow`].
+    #[inline]
+    fn wide_mul_add(acc: Self::Wide, a: Self, b: Self) -> Self::Wide {
+        acc + Self::mul_wide(a, b)
+    }
+
     /// Converts from `f64` (exact for `f64` and `fx128`, rounded for `f32`).
     #[inline]
     fn from_f64(x: f64) -> Self {
@@ -130,6 +141,19 @@ impl Scalar for f64 {
     #[inline]
     fn narrow(w: faer::fx128) -> Self {
         w.0 + w.1
+    }
+    #[inline]
+    fn wide_mul_add(acc: faer::fx128, a: Self, b: Self) -> faer::fx128 {
+        let p = a * b;
+        let e = a.mul_add(b, -p);
+        // two_sum(acc.0, p): s + t == acc.0 + p exactly
+        let s = acc.0 + p;
+        let bb = s - acc.0;
+        let t = (acc.0 - (s - bb)) + (p - bb);
+        faer::fx128 {
+            0: s,
+            1: acc.1 + (t + e),
+        }
     }
     #[inline]
     fn mul_wide(a: Self, b: Self) -> faer::fx128 {
