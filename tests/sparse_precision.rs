@@ -129,3 +129,32 @@ fn cantilever_report() {
         report(n);
     }
 }
+
+/// 500 elements (3002 unknowns, basis condition about 6e8 on this path):
+/// without refinement in extra precision the f64 path sat at the `sqrt(eps)`
+/// guard (a degenerate plastic multiplier at -1.3e-8 relative). Now a
+/// success with residuals at f64's level, the fx128 path's breakpoints and
+/// its accelerations.
+#[test]
+fn cantilever_500_trusted_in_f64() {
+    let (a, bp, acc) = report(500);
+    assert!(
+        a.status.is_success(),
+        "{}: {}",
+        a.status.as_str(),
+        a.message
+    );
+    let eps = f64::EPSILON;
+    let worst = a.info.residual.worst();
+    assert!(worst <= 1e3 * eps, "largest residual {worst:e}");
+    // the condition is what it is: the refinement, not a well-posed basis,
+    // made the result accurate (at 1e8 and beyond unrefined columns lose 8 digits)
+    assert!(
+        a.info.max_condition > 1e8,
+        "condition {:e}",
+        a.info.max_condition
+    );
+    assert!(a.info.refinements > 0);
+    assert!(bp <= 1e3 * eps, "breakpoints off the fx128 path by {bp:e}");
+    assert!(acc <= 1e-10, "accelerations off the fx128 path by {acc:e}");
+}
