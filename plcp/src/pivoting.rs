@@ -588,12 +588,13 @@ impl<'a, T: Scalar> Engine<'a, T> {
     /// `cond * eps > refine_cond_eps`): `r = rhs - B x` accumulated in
     /// [`Scalar::Wide`], `x += B^{-1} r` with the existing factorisation, while
     /// the correction exceeds `WIDE_REFINE_EPS` roundings of `x` and shrinks (at
-    /// most `WIDE_REFINE_STEPS` steps; the last correction is applied even when
-    /// small: `4 eps max|x|` can still be large for a row of small terms). With `cond * eps < 1` this converges to
-    /// a forward error at the working precision's level (Higham, *Accuracy and
-    /// Stability*, ch. 12), where residuals in the working precision stall at
-    /// `cond * eps`: a degenerate basic variable (zero in exact arithmetic)
-    /// then comes out at `eps` rather than at `cond * eps`.
+    /// most `WIDE_REFINE_STEPS` steps; the last correction is applied even
+    /// when small: `4 eps max|x|` can still be large for a row of small terms).
+    /// With `cond * eps < 1` this converges to a forward error at the working
+    /// precision's level (Higham, *Accuracy and Stability*, ch. 12), where
+    /// residuals in the working precision stall at `cond * eps`: a degenerate
+    /// basic variable (zero in exact arithmetic) then comes out at `eps`
+    /// rather than at `cond * eps`.
     fn refine_values_wide(&mut self) -> Residual {
         let l = self.row_of(Var::Lambda);
         let (mut r, mut bx, mut big) = self.wide_residual(&self.x, None);
@@ -630,8 +631,9 @@ impl<'a, T: Scalar> Engine<'a, T> {
     /// `r = rhs - B x` accumulated in [`Scalar::Wide`] and rounded once,
     /// `B x` as `rhs - r` (so that [`Self::residual_of`] reads the wide
     /// residual), and `max_j abs(B_ij x_j)` per row (the scale of the
-    /// cancellation in row `i`: the Oettli-Prager backward error's). `rhs` is the basic right-hand side (`v = None`) or the column
-    /// `a_v` of the entering variable `v` (the residual of `x = B^{-1} a_v`).
+    /// cancellation in row `i`: the Oettli-Prager backward error's). `rhs` is
+    /// the basic right-hand side (`v = None`) or the column `a_v` of the
+    /// entering variable `v` (the residual of `x = B^{-1} a_v`).
     fn wide_residual(&self, x: &Col<T>, v: Option<Var>) -> (Col<T>, Col<T>, Col<T>) {
         let rhs: Col<T> = match v {
             Some(v) => var_column(self.m, &self.d, self.p, v),
