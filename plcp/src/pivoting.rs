@@ -93,6 +93,13 @@ pub(crate) struct Engine<'a, T: Scalar> {
     residual_owed: bool,
 }
 
+/// Mixed-precision refinement of basic values stops once the correction is
+/// within this many roundings (`eps`) of the largest basic value.
+const WIDE_REFINE_EPS: f64 = 4.0;
+
+/// At most this many mixed-precision refinement steps per breakpoint.
+const WIDE_REFINE_STEPS: usize = 3;
+
 fn is_comp(v: Var) -> bool {
     matches!(v, Var::W(_) | Var::Z(_))
 }
@@ -530,13 +537,23 @@ impl<'a, T: Scalar> Engine<'a, T> {
         }
     }
 
-    /// Iterative refinement of the basic values at a breakpoint, on evidence:
-    /// given `B x`, while the equation residual exceeds `refine_tol_eps * eps`
-    /// (at most two steps), `x += B^{-1} (rhs - B x)` in the working precision.
-    /// The explicit inverse is not backward stable (its residuals grow like
-    /// `cond(B) eps`); one step brings them back to the order of `eps` whenever
-    /// `cond(B) eps < 1`. Returns the residuals after refinement.
+    /// Iterative refinement of the basic values at a breakpoint, on evidence.
+    ///
+    /// While the basis condition estimate is small (`cond * eps <=
+    /// refine_cond_eps`): given `B x`, while the equation residual exceeds
+    /// `refine_tol_eps * eps` (at most two steps), `x += B^{-1} (rhs - B x)` in
+    /// the working precision. The explicit inverse is not backward stable (its
+    /// residuals grow like `cond(B) eps`); one step brings them back to the
+    /// order of `eps` whenever `cond(B) eps < 1`.
+    ///
+    /// Beyond that the residual is computed in the wide type
+    /// ([`Scalar::Wide`]) and refinement goes on while the correction exceeds
+    /// the rounding of `x` (see [`Self::refine_values_wide`]). Returns the
+    /// residuals after refinement.
     fn refine_values(&mut self, mut bx: Col<T>) -> Residual {
+        if self.refine_columns {
+            return self.refine_values_wide();
+        }
         let mut res = self.residual_of(&bx);
         let tol = self.settings.refine_tol_eps * T::eps().to_f64();
         let l = self.row_of(Var::Lambda);
@@ -567,15 +584,103 @@ impl<'a, T: Scalar> Engine<'a, T> {
         res
     }
 
+    /// Mixed-precision refinement of the basic values (basis condition
+    /// `cond * eps > refine_cond_eps`): `r = rhs - B x` accumulated in
+    /// [`Scalar::Wide`], `x += B^{-1} r` with the existing factorisation, while
+    /// the correction exceeds `WIDE_REFINE_EPS` roundings of `x` and shrinks (at
+    /// most `WIDE_REFINE_STEPS` steps; the last correction is applied even
+    /// when small: `4 eps max|x|` can still be large for a row of small terms).
+    /// With `cond * eps < 1` this converges to a forward error at the working
+    /// precision's level (Higham, *Accuracy and Stability*, ch. 12), where
+    /// residuals in the working precision stall at `cond * eps`: a degenerate
+    /// basic variable (zero in exact arithmetic) then comes out at `eps`
+    /// rather than at `cond * eps`.
+    fn refine_values_wide(&mut self) -> Residual {
+        let l = self.row_of(Var::Lambda);
+        let (mut r, mut bx, mut big) = self.wide_residual(&self.x, None);
+        let mut last = f64::INFINITY;
+        for _ in 0..WIDE_REFINE_STEPS {
+            let dx = self.factor.solve(&r);
+            self.refinements += 1;
+            let (mut dnorm, mut xnorm) = (0.0f64, 0.0f64);
+            for k in 0..self.dim {
+                if Some(k) != l {
+                    dnorm = dnorm.max(dx[k].to_f64().abs());
+                    xnorm = xnorm.max(self.x[k].to_f64().abs());
+                }
+            }
+            if !dnorm.is_finite() || dnorm >= 0.5 * last {
+                break;
+            }
+            for k in 0..self.dim {
+                if Some(k) != l {
+                    self.x[k] += dx[k];
+                }
+            }
+            last = dnorm;
+            (r, bx, big) = self.wide_residual(&self.x, None);
+            if dnorm <= WIDE_REFINE_EPS * T::eps().to_f64() * xnorm {
+                break;
+            }
+        }
+        // relative to the terms of each row as well (a row whose terms cancel
+        // to a small B x keeps the rounding of its largest term)
+        self.residual_of_scaled(&bx, &self.x, Some(&big))
+    }
+
+    /// `r = rhs - B x` accumulated in [`Scalar::Wide`] and rounded once,
+    /// `B x` as `rhs - r` (so that [`Self::residual_of`] reads the wide
+    /// residual), and `max_j abs(B_ij x_j)` per row (the scale of the
+    /// cancellation in row `i`: the Oettli-Prager backward error's). `rhs` is
+    /// the basic right-hand side (`v = None`) or the column `a_v` of the
+    /// entering variable `v` (the residual of `x = B^{-1} a_v`).
+    fn wide_residual(&self, x: &Col<T>, v: Option<Var>) -> (Col<T>, Col<T>, Col<T>) {
+        let rhs: Col<T> = match v {
+            Some(v) => var_column(self.m, &self.d, self.p, v),
+            None => Col::from_fn(self.dim, |i| self.basic_rhs(i)),
+        };
+        let mut acc: Vec<T::Wide> = (0..self.dim).map(|i| rhs[i].widen()).collect();
+        let mut big: Col<T> = Col::zeros(self.dim);
+        let (m, p) = (self.m, self.p);
+        // the column of a matrix variable is -M[:, j] (of L: -d), so r += M x
+        for (k, b) in self.basis.iter().enumerate() {
+            let xk = x[k];
+            if xk == T::zero() {
+                continue;
+            }
+            let xa = xk.abs();
+            let mut add = |i: usize, a: T| {
+                acc[i] = T::wide_mul_add(acc[i], a, xk);
+                big[i] = big[i].max(a.abs() * xa);
+            };
+            match *b {
+                Var::U(j) => m.for_col(j, add),
+                Var::Z(j) => m.for_col(p + j, add),
+                Var::Lambda => (0..self.dim).for_each(|i| add(i, self.d[i])),
+                Var::W(i) => add(p + i, -T::one()),
+                Var::Artificial(i) => add(i, -T::one()),
+            }
+        }
+        let r = Col::from_fn(self.dim, |i| T::narrow(acc[i]));
+        let bx = Col::from_fn(self.dim, |i| rhs[i] - r[i]);
+        (r, bx, big)
+    }
+
     /// One refinement step of an entering column `col = B^{-1} a_v`, when the
-    /// basis condition estimate says the explicit inverse loses digits.
+    /// basis condition estimate says the factorisation loses digits
+    /// (`cond * eps > refine_cond_eps`); its residual `a_v - B col` is
+    /// accumulated in [`Scalar::Wide`].
     fn refine_column(&mut self, v: Var, col: &mut Col<T>) {
-        let a = var_column(self.m, &self.d, self.p, v);
-        let bc = apply(self.m, &self.d, self.p, &self.basis, col);
-        let r = Col::from_fn(self.dim, |i| a[i] - bc[i]);
+        let (r, _, _) = self.wide_residual(col, Some(v));
         let dc = self.factor.solve(&r);
+        let colmax = (0..self.dim).fold(T::zero(), |a, k| a.max(col[k].abs()));
+        // the correction spreads rounding noise over every entry: entries below
+        // one rounding of the column are zeros (the sparse basis stores the
+        // column as an eta, and a dense one would force refactorisations)
+        let floor = T::eps() * colmax;
         for k in 0..self.dim {
-            col[k] += dc[k];
+            let c = col[k] + dc[k];
+            col[k] = if c.abs() <= floor { T::zero() } else { c };
         }
         self.refinements += 1;
     }
@@ -590,12 +695,22 @@ impl<'a, T: Scalar> Engine<'a, T> {
     }
 
     fn residual_of_values(&self, bx: &Col<T>, x: &Col<T>) -> Residual {
+        self.residual_of_scaled(bx, x, None)
+    }
+
+    /// [`Self::residual_of_values`], each equation row also relative to
+    /// `big[i]` if given (`max_j abs(B_ij x_j)`, as [`crate::residual::residual`]
+    /// scales the residuals of points).
+    fn residual_of_scaled(&self, bx: &Col<T>, x: &Col<T>, big: Option<&Col<T>>) -> Residual {
         let mut eq = 0.0f64;
         for i in 0..self.dim {
             let ld = self.lambda * self.d[i];
             let rhs = self.basic_rhs(i);
             let r = (rhs - bx[i]).abs();
-            let s = T::one().max(self.q[i].abs()).max(ld.abs()).max(bx[i].abs());
+            let mut s = T::one().max(self.q[i].abs()).max(ld.abs()).max(bx[i].abs());
+            if let Some(big) = big {
+                s = s.max(big[i]);
+            }
             eq = eq.max((r / s).to_f64());
         }
         let (mut sz, mut sw) = (1.0f64, 1.0f64);

@@ -14,8 +14,38 @@ pub trait Scalar: RealField + Copy + Send + Sync + core::ops::Neg<Output = Self>
     /// True for hardware types (`f32`, `f64`), on which faer's SIMD kernels run.
     const NATIVE: bool;
 
+    /// The wider type residuals of iterative refinement are accumulated in:
+    /// `f64` for `f32`, `fx128` for `f64`, and `fx128` itself for `fx128` (it
+    /// has no wider type: there the refinement is in the working precision).
+    type Wide: Scalar;
+
     /// Converts to `f64` (rounding for `fx128`).
     fn to_f64(self) -> f64;
+
+    /// Converts to the wide type (exact).
+    fn widen(self) -> Self::Wide;
+
+    /// Rounds a wide value to the working precision.
+    fn narrow(w: Self::Wide) -> Self;
+
+    /// The product `a b` in the wide type: exact for `f32` and `f64` (for `f64`
+    /// the error-free product `fl(a b) + fma(a, b, -fl(a b))`), rounded in the
+    /// working precision for `fx128`.
+    #[inline]
+    fn mul_wide(a: Self, b: Self) -> Self::Wide {
+        a.widen() * b.widen()
+    }
+
+    /// `acc + a b` accumulated in the wide type. For `f64` a compensated sum
+    /// (Ogita, Rump and Oishi's Dot2: the error-free product and sum of each
+    /// term collected in the low part, normalised only by [`Scalar::narrow`]),
+    /// as accurate as a sum in twice the working precision at a fraction of
+    /// double-double arithmetic's cost; a sum of such terms is only to be
+    /// read through [`Scalar::narrow`].
+    #[inline]
+    fn wide_mul_add(acc: Self::Wide, a: Self, b: Self) -> Self::Wide {
+        acc + Self::mul_wide(a, b)
+    }
 
     /// Converts from `f64` (exact for `f64` and `fx128`, rounded for `f32`).
     #[inline]
@@ -77,9 +107,18 @@ pub trait Scalar: RealField + Copy + Send + Sync + core::ops::Neg<Output = Self>
 impl Scalar for f32 {
     const NAME: &'static str = "f32";
     const NATIVE: bool = true;
+    type Wide = f64;
     #[inline]
     fn to_f64(self) -> f64 {
         self as f64
+    }
+    #[inline]
+    fn widen(self) -> f64 {
+        self as f64
+    }
+    #[inline]
+    fn narrow(w: f64) -> Self {
+        w as f32
     }
     #[inline]
     fn from_f64(x: f64) -> Self {
@@ -90,9 +129,36 @@ impl Scalar for f32 {
 impl Scalar for f64 {
     const NAME: &'static str = "f64";
     const NATIVE: bool = true;
+    type Wide = faer::fx128;
     #[inline]
     fn to_f64(self) -> f64 {
         self
+    }
+    #[inline]
+    fn widen(self) -> faer::fx128 {
+        faer::fx128 { 0: self, 1: 0.0 }
+    }
+    #[inline]
+    fn narrow(w: faer::fx128) -> Self {
+        w.0 + w.1
+    }
+    #[inline]
+    fn wide_mul_add(acc: faer::fx128, a: Self, b: Self) -> faer::fx128 {
+        let (p, e) = two_product(a, b);
+        // two_sum(acc.0, p): s + t == acc.0 + p exactly
+        let s = acc.0 + p;
+        let bb = s - acc.0;
+        let t = (acc.0 - (s - bb)) + (p - bb);
+        faer::fx128 {
+            0: s,
+            1: acc.1 + (t + e),
+        }
+    }
+    #[inline]
+    fn mul_wide(a: Self, b: Self) -> faer::fx128 {
+        // |fma(a, b, -p)| <= ulp(p) / 2: already a normalised double-double
+        let (p, e) = two_product(a, b);
+        faer::fx128 { 0: p, 1: e }
     }
     #[inline]
     fn from_f64(x: f64) -> Self {
@@ -103,10 +169,39 @@ impl Scalar for f64 {
 impl Scalar for faer::fx128 {
     const NAME: &'static str = "f128";
     const NATIVE: bool = false;
+    type Wide = faer::fx128;
     #[inline]
     fn to_f64(self) -> f64 {
         self.0 + self.1
     }
+    #[inline]
+    fn widen(self) -> Self {
+        self
+    }
+    #[inline]
+    fn narrow(w: Self) -> Self {
+        w
+    }
+}
+
+/// Dekker's error-free product: `p + e == a b` exactly, `p = fl(a b)`
+/// (Veltkamp's splitting, no fused multiply-add: without the `fma` target
+/// feature `f64::mul_add` is a library call that costs more than these 17
+/// flops and stops vectorisation). Exact unless `abs(a)` or `abs(b)` exceeds
+/// about `2^996` or the product under- or overflows.
+#[inline]
+fn two_product(a: f64, b: f64) -> (f64, f64) {
+    const SPLIT: f64 = 134_217_729.0; // 2^27 + 1
+    let split = |x: f64| {
+        let c = SPLIT * x;
+        let hi = c - (c - x);
+        (hi, x - hi)
+    };
+    let p = a * b;
+    let (ah, al) = split(a);
+    let (bh, bl) = split(b);
+    let e = al * bl - (((p - ah * bh) - al * bh) - ah * bl);
+    (p, e)
 }
 
 /// The precision a caller asks for at run time (command line, settings files).
@@ -150,6 +245,77 @@ mod tests {
         assert!(T::eps() > T::zero());
         assert_eq!((-x).abs().to_f64(), 1.5);
         assert!(!T::from_f64(f64::NAN).is_finite());
+    }
+
+    /// `r = c - sum_k a_k b_k` with heavy cancellation, accumulated with
+    /// `wide_mul_add` and rounded once, against the exact value.
+    fn cancelling_residual<T: Scalar>() -> (T, f64) {
+        // (1 + u)(1 - u) = 1 - u^2: the product's rounding error is all of the residual
+        let u = T::eps().to_f64().sqrt() * 0.75;
+        let (a, b) = (T::from_f64(1.0 + u), T::from_f64(1.0 - u));
+        // the inputs are exact in T only up to its rounding: the exact residual of
+        // what T holds, computed from the rounded inputs in f64 pairs
+        let (ar, br) = (a.to_f64(), b.to_f64());
+        let mut acc = T::one().widen();
+        acc = T::wide_mul_add(acc, -a, b);
+        let (p, e) = two_product(ar, br);
+        let exact = (1.0 - p) - e;
+        (T::narrow(acc), exact)
+    }
+
+    #[test]
+    fn wide_residual_is_exact_where_the_working_one_is_not() {
+        // f64: 1 - fl((1+u)(1-u)) loses u^2 entirely in f64 arithmetic
+        let (r, exact) = cancelling_residual::<f64>();
+        assert!(exact != 0.0);
+        assert!(
+            (r - exact).abs() <= 1e-16 * exact.abs(),
+            "{r:e} vs {exact:e}"
+        );
+        let u = f64::EPSILON.sqrt() * 0.75;
+        let naive = 1.0 - (1.0 + u) * (1.0 - u);
+        assert!(
+            (naive - exact).abs() > 1e-3 * exact.abs(),
+            "the working precision already had it"
+        );
+        // f32 through f64: exact
+        let (r, exact) = cancelling_residual::<f32>();
+        assert!(
+            ((r as f64) - exact).abs() <= 1e-7 * exact.abs(),
+            "{r:e} vs {exact:e}"
+        );
+        // fx128 has no wider type: its own precision
+        let (r, exact) = cancelling_residual::<faer::fx128>();
+        assert!((r.to_f64() - exact).abs() <= 1e-10 * exact.abs().max(1e-31));
+    }
+
+    #[test]
+    fn dot2_sum_matches_double_double() {
+        // a long sum with cancellation: Dot2 in f64 against fx128 arithmetic
+        let n = 1000;
+        let a: Vec<f64> = (0..n)
+            .map(|k| ((k * 7919) % 1013) as f64 / 1013.0 - 0.5)
+            .collect();
+        let b: Vec<f64> = (0..n)
+            .map(|k| ((k * 104729) % 997) as f64 / 997.0 - 0.5)
+            .collect();
+        let mut acc = 0.0f64.widen();
+        let mut dd = faer::fx128::from_f64(0.0);
+        for k in 0..n {
+            acc = f64::wide_mul_add(acc, a[k], b[k]);
+            dd += a[k].widen() * b[k].widen();
+        }
+        // cancel the sum against its own f64 rounding: only the tail is left
+        let s = f64::narrow(acc);
+        let tail_dot2 = f64::narrow(f64::wide_mul_add(acc, -s, 1.0));
+        let tail_dd = (dd - s.widen()).to_f64();
+        assert!((s - dd.to_f64()).abs() <= f64::EPSILON * s.abs());
+        assert!(
+            // Dot2: about eps^2 times the sum of |a b| (250 here); a sum in
+            // f64 would be off by about eps times it
+            (tail_dot2 - tail_dd).abs() <= 1e-26,
+            "{tail_dot2:e} vs {tail_dd:e}"
+        );
     }
 
     #[test]
