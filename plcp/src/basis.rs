@@ -56,10 +56,6 @@ pub(crate) fn var_column<T: Scalar>(m: MatrixRef<'_, T>, d: &Col<T>, p: usize, v
 }
 
 /// `B x = sum_r x_r a_{basis[r]}`, by system row.
-///
-/// Over the nonzero entries of `x` only; for a dense `M` the matrix columns are
-/// summed four at a time over contiguous slices (one pass over `y` per four
-/// columns, and the loop vectorises).
 pub(crate) fn apply<T: Scalar>(
     m: MatrixRef<'_, T>,
     d: &Col<T>,
@@ -69,70 +65,30 @@ pub(crate) fn apply<T: Scalar>(
 ) -> Col<T> {
     let dim = m.nrows();
     let mut y = Col::<T>::zeros(dim);
-    // the matrix columns with their coefficients (negated: a_v = -M[:, j], -d)
-    let mut dense_cols: Vec<(&[T], T)> = Vec::new();
-    let mut dbuf: Vec<T> = Vec::new();
-    let mut lambda_coef = None;
+    let axpy = |y: &mut Col<T>, col: faer::ColRef<'_, T>, f: T| {
+        for i in 0..dim {
+            let v = y[i] - col[i] * f;
+            y[i] = v;
+        }
+    };
+    let axpy_m = |y: &mut Col<T>, j: usize, f: T| match m {
+        MatrixRef::Dense(m) => axpy(y, m.col(j), f),
+        MatrixRef::Sparse(_) => m.for_col(j, |i, mij| {
+            let v = y[i] - mij * f;
+            y[i] = v;
+        }),
+    };
     for (r, v) in basis.iter().enumerate() {
         let xr = x[r];
         if xr == T::zero() {
             continue;
         }
-        let j = match *v {
-            Var::U(j) => j,
-            Var::Z(j) => p + j,
-            Var::Lambda => {
-                lambda_coef = Some(-xr);
-                continue;
-            }
-            Var::W(i) => {
-                y[p + i] += xr;
-                continue;
-            }
-            Var::Artificial(k) => {
-                y[k] += xr;
-                continue;
-            }
-        };
-        match m {
-            MatrixRef::Dense(md) => match md.col(j).try_as_col_major() {
-                Some(c) => dense_cols.push((c.as_slice(), -xr)),
-                None => {
-                    for i in 0..dim {
-                        let v = y[i] - md[(i, j)] * xr;
-                        y[i] = v;
-                    }
-                }
-            },
-            MatrixRef::Sparse(_) => m.for_col(j, |i, mij| {
-                let v = y[i] - mij * xr;
-                y[i] = v;
-            }),
-        }
-    }
-    if let Some(f) = lambda_coef {
-        dbuf.extend(d.iter().copied());
-        dense_cols.push((&dbuf, f));
-    }
-    let ys = y
-        .as_mut()
-        .try_as_col_major_mut()
-        .expect("an owned column is contiguous")
-        .as_slice_mut();
-    let mut chunks = dense_cols.chunks_exact(4);
-    for c in &mut chunks {
-        let (a0, f0) = c[0];
-        let (a1, f1) = c[1];
-        let (a2, f2) = c[2];
-        let (a3, f3) = c[3];
-        let (a0, a1, a2, a3) = (&a0[..dim], &a1[..dim], &a2[..dim], &a3[..dim]);
-        for i in 0..dim {
-            ys[i] += (a0[i] * f0 + a1[i] * f1) + (a2[i] * f2 + a3[i] * f3);
-        }
-    }
-    for &(a, f) in chunks.remainder() {
-        for (yi, &ai) in ys.iter_mut().zip(a) {
-            *yi += ai * f;
+        match *v {
+            Var::U(j) => axpy_m(&mut y, j, xr),
+            Var::Z(j) => axpy_m(&mut y, p + j, xr),
+            Var::Lambda => axpy(&mut y, d.as_ref(), xr),
+            Var::W(i) => y[p + i] += xr,
+            Var::Artificial(k) => y[k] += xr,
         }
     }
     y
