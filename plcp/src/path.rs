@@ -287,7 +287,8 @@ pub struct Info {
     pub turning_points: usize,
     /// Largest residuals at any breakpoint (and at the end).
     pub residual: Residual,
-    /// Largest estimated condition number of a basis (1-norm, at refactorisations).
+    /// Largest estimated condition number of a basis (1-norm, columns scaled to
+    /// 1-norm about one; at refactorisations).
     pub max_condition: f64,
     /// The free block (mixed form).
     pub free_block: FreeBlockInfo,

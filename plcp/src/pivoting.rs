@@ -80,6 +80,9 @@ pub(crate) struct Engine<'a, T: Scalar> {
     since_refactor: usize,
     /// The last condition estimate says entering columns need a refinement step.
     refine_columns: bool,
+    /// The basis representation refines its own solves (cheaper than
+    /// [`Engine::refine_column`]: the block basis refines on `S` alone).
+    refine_inside: bool,
     pub max_cond: f64,
     pivot_tol: T,
     /// Print every pivot to stderr (environment variable `PLCP_TRACE` set).
@@ -152,6 +155,7 @@ impl<'a, T: Scalar> Engine<'a, T> {
             refinements: 0,
             since_refactor: 0,
             refine_columns: false,
+            refine_inside: false,
             max_cond: 1.0,
             pivot_tol: T::from_f64(settings.pivot_tol_eps) * T::eps(),
             noise: T::from_f64(settings.pivot_tol_eps) * T::eps(),
@@ -193,6 +197,8 @@ impl<'a, T: Scalar> Engine<'a, T> {
         self.since_refactor = 0;
         self.max_cond = self.max_cond.max(cond);
         self.refine_columns = cond * T::eps().to_f64() > self.settings.refine_cond_eps;
+        // off for every solve but the entering column's (see trace_steps)
+        self.refine_inside = self.factor.set_refine(false);
         self.noise = self.pivot_tol * T::from_f64(cond.clamp(1.0, 1e6));
         let rhs = self.rhs();
         let xnew = self.factor.solve(&rhs);
@@ -754,6 +760,12 @@ impl<'a, T: Scalar> Engine<'a, T> {
             if self.pivots >= self.max_pivots {
                 return TraceEnd::PivotLimit;
             }
+            // the entering column refined inside its solve, where the basis can
+            // (the block basis refines on S alone: no extra pass over the matrix)
+            let refine_here = self.refine_columns && self.refine_inside;
+            if refine_here {
+                self.factor.set_refine(true);
+            }
             let mut col = match rec.as_deref_mut() {
                 Some(rec) if self.residual_owed => {
                     let a = var_column(self.m, &self.d, self.p, driver);
@@ -765,17 +777,46 @@ impl<'a, T: Scalar> Engine<'a, T> {
                         &a,
                         &self.x,
                     );
+                    if refine_here {
+                        self.factor.set_refine(false);
+                    }
                     let res = self.refine_values(bx);
                     if let Some(b) = rec.breakpoints.last_mut() {
                         b.residual = res;
                     }
                     self.residual_owed = false;
+                    // the residual guard of `crate::solve`, applied where the
+                    // evidence appears: a path that continued from a breakpoint
+                    // whose values fail their equations (drift beyond what
+                    // refinement repairs) could end in a wrong secondary ray,
+                    // which that guard does not downgrade
+                    let limit = T::eps().to_f64().sqrt();
+                    let worst = res.worst();
+                    if worst.is_nan() || worst > limit {
+                        return TraceEnd::IllConditioned(format!(
+                            "the basic solution at the breakpoint L = {:e} has residual {worst:.3e} (equation {:.1e}, feasibility {:.1e}, complementarity {:.1e}) above sqrt(eps) = {limit:.1e} in {} after refinement (basis condition estimate up to {:.1e}): the path is not continued; use a higher precision",
+                            self.lambda.to_f64(),
+                            res.equation,
+                            res.feasibility,
+                            res.complementarity,
+                            T::NAME,
+                            self.max_cond
+                        ));
+                    }
                     col
                 }
                 _ => self.column(driver),
             };
+            if refine_here {
+                self.factor.set_refine(false);
+            }
             if self.refine_columns {
-                self.refine_column(driver, &mut col);
+                if self.refine_inside {
+                    // refined inside the solve above
+                    self.refinements += 1;
+                } else {
+                    self.refine_column(driver, &mut col);
+                }
             }
             let colmax = (0..self.dim).fold(T::zero(), |a, i| a.max(col[i].abs()));
             let rate = match driver {

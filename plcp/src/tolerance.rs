@@ -13,10 +13,10 @@
 //! | zero in a row of `B^{-1}` | the sparse basis hands the lexicographic rule rows of `B^{-1}`; an entry is zero | `abs(v) <= ROW_NOISE_EPS * eps * max abs(row)` ([`ROW_NOISE_EPS`] `= 1e3`) |
 //! | sparse full rank | Wolfe's start skips the dense LU of a sparse free block | sparse LU succeeds and `cond_1 * rank_tol(p, 1) < 1` |
 //! | rank of the free block | a pivot of the full-pivoting LU counts | `abs(u_kk) > sqrt(eps) * max abs(u_11)`... see [`rank_tol`] |
-//! | condition | a basis is ill-conditioned | `cond_1(B) * eps > max_cond_eps` (default `1e-2`) |
+//! | condition | a basis is ill-conditioned | `cond_1(B D) * eps > max_cond_eps` (default `1e-2`), `D` scaling the columns of `B` to 1-norm about one (powers of two; the estimate is then within a factor `dim` of the best column scaling, van der Sluis) |
 //! | residuals at breakpoints | reported, measured by the trace with the next column solve (one pass over the basic columns, on the scaled system) | equation row `r` relative to `max(1, abs(q_r), abs(L d_r), abs((B x)_r))`: at least the componentwise (Oettli-Prager) backward error, up to the floor of 1 |
 //! | residuals of points | reported ([`crate::residual::residual`]: start, end, `Path::at`, and every breakpoint for Lemke on a Schur reduction or on request, [`crate::residual::measure_path`]) | equation row `r` relative to `max(1, abs(q_r), abs(L d_r), abs(w_r), max_j abs(M_rj x_j))` |
-//! | residual guard | a path that claims success is downgraded to `ill_conditioned` | largest reported residual `> sqrt(eps)` |
+//! | residual guard | a path that claims success is downgraded to `ill_conditioned`; the trace stops as `ill_conditioned` at a breakpoint whose residual (after refinement) fails it | largest reported residual `> sqrt(eps)` |
 //! | reduction ties | Lemke on the Schur reduction of a mixed problem: the tie tolerance of the reduced path | `tie_tol_eps` times [`reduction_tie_factor`] (`cond(F)`, at least 1, and the product at most `sqrt(eps)`) |
 //! | breakpoint re-intersection | Lemke on the Schur reduction: a breakpoint moves to where the polished segment's leaving variable is zero | only by `<= sqrt(eps) * max(1, abs(L))` |
 
