@@ -5,7 +5,18 @@
 //! the scaled problem gives `x = C x~` and `w = R^{-1} w~`; complementarity is
 //! unchanged because `w~_i z~_i = (r_i / c_i) w_i z_i`. The scales come from a
 //! few sweeps of Ruiz's method (each row and column divided by the square root
-//! of its largest entry).
+//! of its largest entry) on `M` bordered by one more column, `g_i = max(abs(q_i),
+//! abs(d_i))`, whose scale `gamma` is folded into the others (`R = gamma R'`,
+//! `C = C' / gamma` leave `R M C = R' M C'` and give `R q = gamma R' q`). So the
+//! right-hand side is equilibrated with `M`: data scaled by a uniform factor such
+//! as `1e-150`, or `q` and `d` of another magnitude than `M`, or rows whose `q`
+//! spans `1e38` to `1e-37`, all reach the pivoting with `q`, `d` and `M` of
+//! order one, where the tolerances' floors of one (see [`crate::tolerance`]) are
+//! relative to the data rather than absolute. Ruiz balances maxima only, so a
+//! last pass raises a row whose right-hand side stayed far below one against
+//! its column (`r_i t`, `c_i / t`), as far as the row's off-diagonal entries
+//! allow (`diag(3e38, 1e-37)` with `q = (3e38, 2e-37)` then has every scaled
+//! entry of order one).
 
 use crate::matrix::MatrixRef;
 use crate::path::Path;
@@ -34,7 +45,8 @@ fn pow2(x: f64) -> f64 {
 }
 
 impl Equilibration {
-    /// Ruiz equilibration of `M` in `sweeps` sweeps, scales rounded to powers of two.
+    /// Ruiz equilibration of `M` bordered by the column `max(abs(q), abs(d))` in
+    /// `sweeps` sweeps, scales rounded to powers of two.
     ///
     /// On a sparse problem the sweeps run over the stored entries only.
     pub fn ruiz<T: Scalar>(problem: &Plcp<T>, sweeps: usize) -> Self {
@@ -57,12 +69,31 @@ impl Equilibration {
                 )
             }
         };
+        // the bordering column of the right-hand side, with its own scale gamma
+        let g: Vec<f64> = (0..dim)
+            .map(|i| {
+                let v = problem.q()[i].to_f64().abs().max(problem.d()[i].to_f64().abs());
+                if v.is_finite() {
+                    v
+                } else {
+                    0.0
+                }
+            })
+            .collect();
+        let mut gamma = 1.0f64;
         let mut r = vec![1.0f64; dim];
         let mut c = vec![1.0f64; dim];
         let mut rmax = vec![0.0f64; dim];
         let mut cmax = vec![0.0f64; dim];
         for _ in 0..sweeps {
-            rmax.iter_mut().for_each(|v| *v = 0.0);
+            let mut gmax = 0.0f64;
+            for i in 0..dim {
+                let v = g[i] * r[i] * gamma;
+                rmax[i] = v;
+                if v > gmax {
+                    gmax = v;
+                }
+            }
             for j in 0..dim {
                 let cj = c[j];
                 let mut cm = 0.0f64;
@@ -99,8 +130,11 @@ impl Equilibration {
             // every row and column maximum within a factor of two of one: the
             // power-of-two scales would not change any more
             let settled = |v: &f64| *v == 0.0 || (0.5..=2.0).contains(v);
-            if rmax.iter().all(settled) && cmax.iter().all(settled) {
+            if rmax.iter().all(settled) && cmax.iter().all(settled) && settled(&gmax) {
                 break;
+            }
+            if gmax > 0.0 && gmax.is_finite() {
+                gamma /= gmax.sqrt();
             }
             for i in 0..dim {
                 if rmax[i] > 0.0 && rmax[i].is_finite() {
@@ -113,9 +147,55 @@ impl Equilibration {
                 }
             }
         }
+        // a row i whose right-hand side stays far below one (Ruiz balances
+        // maxima only: in diag(3e38, 1e-37) with q = (3e38, 2e-37) the second
+        // row's q ends at 3e-38) is raised with its column lowered, r_i t,
+        // c_i / t, t >= 1, as far as its off-diagonal entries allow: M_ii is
+        // unchanged, the entries of column i only shrink, those of row i stay at
+        // most one; independent for every i
+        let mut rowoff = vec![0.0f64; dim];
+        let mut entry = |i: usize, j: usize, aij: f64| {
+            if i != j {
+                let v = aij * r[i] * c[j];
+                if v > rowoff[i] {
+                    rowoff[i] = v;
+                }
+            }
+        };
+        match rows {
+            None => {
+                for j in 0..dim {
+                    for i in 0..dim {
+                        entry(i, j, a[j * dim + i]);
+                    }
+                }
+            }
+            Some((col_ptr, row_idx)) => {
+                for j in 0..dim {
+                    for k in col_ptr[j]..col_ptr[j + 1] {
+                        entry(row_idx[k], j, a[k]);
+                    }
+                }
+            }
+        }
+        for i in 0..dim {
+            let gi = g[i] * r[i] * gamma;
+            if gi > 0.0 && gi < 0.5 && gi.is_finite() && rowoff[i].is_finite() {
+                let t = if rowoff[i] > 0.0 {
+                    (1.0 / gi).min(1.0 / rowoff[i])
+                } else {
+                    1.0 / gi
+                };
+                if t > 1.0 && t.is_finite() {
+                    r[i] *= t;
+                    c[i] /= t;
+                }
+            }
+        }
+        // fold gamma into the rows and columns: R = gamma R', C = C' / gamma
         Self {
-            rows: r.into_iter().map(pow2).collect(),
-            cols: c.into_iter().map(pow2).collect(),
+            rows: r.into_iter().map(|v| pow2(v * gamma)).collect(),
+            cols: c.into_iter().map(|v| pow2(v / gamma)).collect(),
         }
     }
 
