@@ -5,18 +5,23 @@
 //! the scaled problem gives `x = C x~` and `w = R^{-1} w~`; complementarity is
 //! unchanged because `w~_i z~_i = (r_i / c_i) w_i z_i`. The scales come from a
 //! few sweeps of Ruiz's method (each row and column divided by the square root
-//! of its largest entry) on `M` bordered by one more column, `g_i = max(abs(q_i),
-//! abs(d_i))`, whose scale `gamma` is folded into the others (`R = gamma R'`,
-//! `C = C' / gamma` leave `R M C = R' M C'` and give `R q = gamma R' q`). So the
-//! right-hand side is equilibrated with `M`: data scaled by a uniform factor such
-//! as `1e-150`, or `q` and `d` of another magnitude than `M`, or rows whose `q`
-//! spans `1e38` to `1e-37`, all reach the pivoting with `q`, `d` and `M` of
-//! order one, where the tolerances' floors of one (see [`crate::tolerance`]) are
-//! relative to the data rather than absolute. Ruiz balances maxima only, so a
-//! last pass raises a row whose right-hand side stayed far below one against
-//! its column (`r_i t`, `c_i / t`), as far as the row's off-diagonal entries
-//! allow (`diag(3e38, 1e-37)` with `q = (3e38, 2e-37)` then has every scaled
-//! entry of order one).
+//! of its largest entry). Two more steps equilibrate the right-hand side
+//! `g_i = max(abs(q_i), abs(d_i))` with `M`, so that the tolerances' floors of
+//! one (see [`crate::tolerance`]) are relative to the data, not absolute:
+//!
+//! * a uniform factor `gamma` (`R = gamma R'`, `C = C' / gamma` leave
+//!   `R M C = R' M C'` and give `R q = gamma R' q`) brings the largest scaled
+//!   `g_i` to one when it lies outside `[2^-10, 2^10]`: data scaled by `1e-150`,
+//!   or `M` by `1e150` and `q`, `d` by `1e-150`, reach the pivoting as the
+//!   unscaled data would;
+//! * a row whose scaled `g_i` stays below `2^-26` (Ruiz balances maxima only:
+//!   in `diag(3e38, 1e-37)` with `q = (3e38, 2e-37)` the second row's `q` ends
+//!   at `3e-38`) is raised against its column (`r_i t`, `c_i / t`, `t > 1`) as
+//!   far as the row's off-diagonal entries allow (they stay at most one, `M_ii`
+//!   is unchanged, column `i` only shrinks).
+//!
+//! Typical data (right-hand side within `2^10` of `M`, no row's below `2^-26`
+//! of the largest) keep exactly the scaling of Ruiz on `M`.
 
 use crate::matrix::MatrixRef;
 use crate::path::Path;
@@ -36,6 +41,11 @@ pub struct Equilibration {
     pub cols: Vec<f64>,
 }
 
+/// A row whose scaled right-hand side stays below this (the largest being
+/// about one) is raised against its column: `2^-26`, about `sqrt(eps)` of
+/// `f64`, where the tolerances' floor of one starts to swallow it.
+const SMALL_RHS: f64 = 1.0 / 67_108_864.0;
+
 fn pow2(x: f64) -> f64 {
     if !(x.is_finite() && x > 0.0) {
         return 1.0;
@@ -45,8 +55,8 @@ fn pow2(x: f64) -> f64 {
 }
 
 impl Equilibration {
-    /// Ruiz equilibration of `M` bordered by the column `max(abs(q), abs(d))` in
-    /// `sweeps` sweeps, scales rounded to powers of two.
+    /// Ruiz equilibration of `M` in `sweeps` sweeps, then the right-hand side
+    /// balanced against it (module docs), scales rounded to powers of two.
     ///
     /// On a sparse problem the sweeps run over the stored entries only.
     pub fn ruiz<T: Scalar>(problem: &Plcp<T>, sweeps: usize) -> Self {
@@ -69,7 +79,7 @@ impl Equilibration {
                 )
             }
         };
-        // the bordering column of the right-hand side, with its own scale gamma
+        // the size of the right-hand side per row
         let g: Vec<f64> = (0..dim)
             .map(|i| {
                 let v = problem.q()[i].to_f64().abs().max(problem.d()[i].to_f64().abs());
@@ -80,20 +90,12 @@ impl Equilibration {
                 }
             })
             .collect();
-        let mut gamma = 1.0f64;
         let mut r = vec![1.0f64; dim];
         let mut c = vec![1.0f64; dim];
         let mut rmax = vec![0.0f64; dim];
         let mut cmax = vec![0.0f64; dim];
         for _ in 0..sweeps {
-            let mut gmax = 0.0f64;
-            for i in 0..dim {
-                let v = g[i] * r[i] * gamma;
-                rmax[i] = v;
-                if v > gmax {
-                    gmax = v;
-                }
-            }
+            rmax.iter_mut().for_each(|v| *v = 0.0);
             for j in 0..dim {
                 let cj = c[j];
                 let mut cm = 0.0f64;
@@ -130,11 +132,8 @@ impl Equilibration {
             // every row and column maximum within a factor of two of one: the
             // power-of-two scales would not change any more
             let settled = |v: &f64| *v == 0.0 || (0.5..=2.0).contains(v);
-            if rmax.iter().all(settled) && cmax.iter().all(settled) && settled(&gmax) {
+            if rmax.iter().all(settled) && cmax.iter().all(settled) {
                 break;
-            }
-            if gmax > 0.0 && gmax.is_finite() {
-                gamma /= gmax.sqrt();
             }
             for i in 0..dim {
                 if rmax[i] > 0.0 && rmax[i].is_finite() {
@@ -147,6 +146,15 @@ impl Equilibration {
                 }
             }
         }
+        // the right-hand side after Ruiz: a uniform factor brings its largest
+        // entry to one, if it lies outside [2^-10, 2^10] (typical data keep
+        // exactly the scaling of Ruiz on M)
+        let gmax = (0..dim).fold(0.0f64, |m, i| m.max(g[i] * r[i]));
+        let gamma = if gmax > 0.0 && gmax.is_finite() && !(2f64.powi(-10)..=2f64.powi(10)).contains(&gmax) {
+            1.0 / gmax
+        } else {
+            1.0
+        };
         // a row i whose right-hand side stays far below one (Ruiz balances
         // maxima only: in diag(3e38, 1e-37) with q = (3e38, 2e-37) the second
         // row's q ends at 3e-38) is raised with its column lowered, r_i t,
@@ -180,7 +188,7 @@ impl Equilibration {
         }
         for i in 0..dim {
             let gi = g[i] * r[i] * gamma;
-            if gi > 0.0 && gi < 0.5 && gi.is_finite() && rowoff[i].is_finite() {
+            if gi > 0.0 && gi < SMALL_RHS && gi.is_finite() && rowoff[i].is_finite() {
                 let t = if rowoff[i] > 0.0 {
                     (1.0 / gi).min(1.0 / rowoff[i])
                 } else {
