@@ -85,9 +85,17 @@ impl Analysis {
         // an ill_conditioned f64 path is continued in fx128 from where it failed
         let mut solution = solve::solve_escalating(&system, &options.solve, escalate)?;
         let mut note = solution.info.escalation.as_ref().map(|e| {
+            let how = if e.warm {
+                format!(
+                    "continued in f128 from Lambda = {:e}, warm-started from the f64 basis there",
+                    e.lambda
+                )
+            } else {
+                format!("re-solved in f128 from Lambda = {:e} ({})", e.lambda, e.note)
+            };
             format!(
-                "the f64 path was continued in f128 from Lambda = {:e} ({} f64 pivots in {:.2} s, {} f128 pivots in {:.2} s), because: {}",
-                e.lambda, e.pivots_before, e.seconds_before, e.pivots_fx128, e.seconds_fx128, e.reason
+                "the f64 path was {how} ({} f64 pivots in {:.2} s, {} f128 pivots in {:.2} s), because: {}",
+                e.pivots_before, e.seconds_before, e.pivots_fx128, e.seconds_fx128, e.reason
             )
         });
         // any other poor outcome: the whole path re-solved in fx128

@@ -11,13 +11,16 @@
 //!    residual already exceeded `sqrt(eps)`, the segment ending at the first such
 //!    breakpoint; every breakpoint kept lies at or before `L_k` and was measured
 //!    within `sqrt(eps)`; if `fx128` rejects that segment's basis (singular, or
-//!    infeasible at `L_k`: the working precision's `L_k` itself was off), the
-//!    segment before it is tried, up to three segments back;
+//!    infeasible inside the segment: the working precision had left the path
+//!    before), earlier segments are tried, `1, 2, 4, 8, ...` segments back;
 //! 2. the problem is converted to `fx128` (exactly: `f32` and `f64` values are
 //!    `fx128` values; the equilibration is recomputed from the same data, so it
-//!    is the same), and traced from `L_k` to `lambda_max`, warm-started from that
-//!    segment's basis ([`crate::Settings::warm_basis`]: validated there as
-//!    nonsingular and feasible at `L_k`);
+//!    is the same), and traced from the middle of segment `k` (not from `L_k`:
+//!    a breakpoint rounded to `T` is off by rounding, and its leaving variable
+//!    may be slightly negative there in `fx128`) to `lambda_max`, warm-started
+//!    from that segment's basis ([`crate::Settings::warm_basis`]: validated
+//!    there as nonsingular and feasible); its first segment, extended back to
+//!    `L_k` (the same basis, so the same affine solution), replaces segment `k`;
 //! 3. the `fx128` segments and breakpoints are rounded to `T` and spliced after
 //!    the kept ones; the residuals of the start and end are measured on the
 //!    original problem, the breakpoints keep theirs, and the status is the
@@ -61,8 +64,21 @@ pub struct Escalation {
     pub seconds_fx128: f64,
 }
 
-/// How many segments back from the trouble a warm restart is tried.
-const RESTART_TRIES: usize = 3;
+/// The segments tried for a warm restart, from `k0` back: `k0, k0 - 1,
+/// k0 - 2, k0 - 4, ...` (doubling steps, at most about `log2(k0) + 2` tries,
+/// each one factorisation in `fx128`), the last one `0`.
+fn restart_candidates(k0: usize) -> Vec<usize> {
+    let mut v = vec![k0];
+    let mut step = 1;
+    while let Some(k) = k0.checked_sub(step) {
+        v.push(k);
+        step *= 2;
+    }
+    if v.last() != Some(&0) {
+        v.push(0);
+    }
+    v
+}
 
 fn col_to<U: Scalar, T: Scalar>(c: &Col<U>) -> Col<T> {
     Col::from_fn(c.nrows(), |i| T::from_f64(c[i].to_f64()))
@@ -107,7 +123,10 @@ fn restart_segment<T: Scalar>(path: &Path<T>) -> Result<usize, String> {
         return Err("no segment was traced in the working precision".into());
     }
     if path.info.turning_points > 0
-        || path.segments.iter().any(|s| !s.unbounded && s.lambda_to < s.lambda_from)
+        || path
+            .segments
+            .iter()
+            .any(|s| !s.unbounded && s.lambda_to < s.lambda_from)
     {
         return Err("the path has turning points".into());
     }
@@ -133,7 +152,13 @@ fn restart_segment<T: Scalar>(path: &Path<T>) -> Result<usize, String> {
 /// pair and basic `u`, completed by the free variables it lacks (Lemke: the
 /// reduction drops them again) or, for Wolfe, by the artificial variables of the
 /// dependent rows. `None` if that does not give `p + n` variables.
-fn warm_basis_of<T: Scalar>(seg: &Segment<T>, path: &Path<T>, method: Method, p: usize, n: usize) -> Option<Vec<Var>> {
+fn warm_basis_of<T: Scalar>(
+    seg: &Segment<T>,
+    path: &Path<T>,
+    method: Method,
+    p: usize,
+    n: usize,
+) -> Option<Vec<Var>> {
     let mut b = seg.basis.clone();
     let missing_u: Vec<Var> = (0..p).map(Var::U).filter(|v| !b.contains(v)).collect();
     match method {
@@ -152,7 +177,11 @@ fn warm_basis_of<T: Scalar>(seg: &Segment<T>, path: &Path<T>, method: Method, p:
 /// Continues `path` (of `problem`, solved with `settings`) in `fx128`, if it
 /// ended `ill_conditioned`. Called by [`crate::solve`] when
 /// [`Settings::escalate`] is set; a no-op in `fx128` itself.
-pub(crate) fn continue_in_fx128<T: Scalar>(problem: &Plcp<T>, settings: &Settings<T>, path: &mut Path<T>) {
+pub(crate) fn continue_in_fx128<T: Scalar>(
+    problem: &Plcp<T>,
+    settings: &Settings<T>,
+    path: &mut Path<T>,
+) {
     if T::NAME == <fx128 as Scalar>::NAME || path.status != Status::IllConditioned {
         return;
     }
@@ -181,13 +210,21 @@ pub(crate) fn continue_in_fx128<T: Scalar>(problem: &Plcp<T>, settings: &Setting
         let from = mid;
         let pr = wide
             .clone()
-            .with_range(from, problem.lambda_max().map(|l| fx128::from_f64(l.to_f64())))
+            .with_range(
+                from,
+                problem.lambda_max().map(|l| fx128::from_f64(l.to_f64())),
+            )
             .map_err(|e| e.to_string())?;
-        let rest = crate::solve(&pr, &settings_fx128(settings, Some(basis))).map_err(|e| e.to_string())?;
+        let rest =
+            crate::solve(&pr, &settings_fx128(settings, Some(basis))).map_err(|e| e.to_string())?;
         if rest.info.warm_start {
             Ok(rest)
         } else {
-            Err(format!("fx128 did not accept the basis at L = {:e}: {}", from.to_f64(), rest.info.warm_start_note))
+            Err(format!(
+                "fx128 did not accept the basis at L = {:e}: {}",
+                from.to_f64(),
+                rest.info.warm_start_note
+            ))
         }
     };
     // the segment the trouble arose in may itself start where the working
@@ -196,7 +233,7 @@ pub(crate) fn continue_in_fx128<T: Scalar>(problem: &Plcp<T>, settings: &Setting
     // back, a few times at most
     let warm = restart_segment(path).and_then(|k0| {
         let mut why = String::new();
-        for k in (0..=k0).rev().take(RESTART_TRIES) {
+        for k in restart_candidates(k0) {
             let basis = match warm_basis_of(&path.segments[k], path, settings.method, p, n) {
                 Some(b) => b,
                 None => {
@@ -254,7 +291,11 @@ fn splice<T: Scalar>(path: &mut Path<T>, k: usize, rest: Path<fx128>, esc: &mut 
         let mut s = s.clone();
         if esc.warm && j == 0 {
             let back = fx128::from_f64(esc.lambda) - s.lambda_from;
-            for (from, slope) in [(&mut s.z_from, &s.dz), (&mut s.w_from, &s.dw), (&mut s.u_from, &s.du)] {
+            for (from, slope) in [
+                (&mut s.z_from, &s.dz),
+                (&mut s.w_from, &s.dw),
+                (&mut s.u_from, &s.du),
+            ] {
                 for i in 0..from.nrows() {
                     from[i] += slope[i] * back;
                 }
@@ -316,7 +357,11 @@ fn splice<T: Scalar>(path: &mut Path<T>, k: usize, rest: Path<fx128>, esc: &mut 
     path.message = format!(
         "{how} after {}; {outcome}. {}",
         esc.reason,
-        if rest.status.is_success() { rest.message.as_str() } else { "" }
+        if rest.status.is_success() {
+            rest.message.as_str()
+        } else {
+            ""
+        }
     )
     .trim_end()
     .to_string();

@@ -82,7 +82,10 @@ impl Equilibration {
         // the size of the right-hand side per row
         let g: Vec<f64> = (0..dim)
             .map(|i| {
-                let v = problem.q()[i].to_f64().abs().max(problem.d()[i].to_f64().abs());
+                let v = problem.q()[i]
+                    .to_f64()
+                    .abs()
+                    .max(problem.d()[i].to_f64().abs());
                 if v.is_finite() {
                     v
                 } else {
@@ -150,7 +153,10 @@ impl Equilibration {
         // entry to one, if it lies outside [2^-10, 2^10] (typical data keep
         // exactly the scaling of Ruiz on M)
         let gmax = (0..dim).fold(0.0f64, |m, i| m.max(g[i] * r[i]));
-        let gamma = if gmax > 0.0 && gmax.is_finite() && !(2f64.powi(-10)..=2f64.powi(10)).contains(&gmax) {
+        let gamma = if gmax > 0.0
+            && gmax.is_finite()
+            && !(2f64.powi(-10)..=2f64.powi(10)).contains(&gmax)
+        {
             1.0 / gmax
         } else {
             1.0

@@ -31,7 +31,9 @@ fn neumann<T: Scalar>(n: usize, delta: f64) -> Plcp<T> {
             0.0
         })
     });
-    let q = Col::<T>::from_fn(n + 1, |i| T::from_f64(if i == n { 10.0 } else { 1.0 + i as f64 / 10.0 }));
+    let q = Col::<T>::from_fn(n + 1, |i| {
+        T::from_f64(if i == n { 10.0 } else { 1.0 + i as f64 / 10.0 })
+    });
     let d = Col::<T>::from_fn(n + 1, |_| T::from_f64(-1.0));
     Plcp::new(m.as_ref(), q.as_ref(), d.as_ref()).unwrap()
 }
@@ -78,7 +80,11 @@ fn settings<T: Scalar>(method: Method, max_cond_eps: f64, escalate: bool) -> Set
 /// path against the plain fx128 one to `tol` (breakpoints and z, relative).
 fn check<T: Scalar>(delta: f64, max_cond_eps: f64, method: Method, tol: f64) {
     let n = 6;
-    let plain = plcp::solve(&neumann::<T>(n, delta), &settings(method, max_cond_eps, false)).unwrap();
+    let plain = plcp::solve(
+        &neumann::<T>(n, delta),
+        &settings(method, max_cond_eps, false),
+    )
+    .unwrap();
     assert_eq!(
         plain.status,
         Status::IllConditioned,
@@ -87,27 +93,55 @@ fn check<T: Scalar>(delta: f64, max_cond_eps: f64, method: Method, tol: f64) {
         plain.message
     );
     assert!(plain.info.escalation.is_none());
-    let reference = plcp::solve(&neumann::<fx128>(n, delta), &Settings::with_method(method)).unwrap();
-    assert_eq!(reference.status, Status::UnboundedRay, "{}", reference.message);
-    let cont = plcp::solve(&neumann::<T>(n, delta), &settings(method, max_cond_eps, true)).unwrap();
+    let reference =
+        plcp::solve(&neumann::<fx128>(n, delta), &Settings::with_method(method)).unwrap();
+    assert_eq!(
+        reference.status,
+        Status::UnboundedRay,
+        "{}",
+        reference.message
+    );
+    let cont = plcp::solve(
+        &neumann::<T>(n, delta),
+        &settings(method, max_cond_eps, true),
+    )
+    .unwrap();
     let esc = cont.info.escalation.as_ref().expect("escalated");
-    assert_eq!(cont.status, reference.status, "{}: {}", T::NAME, cont.message);
+    assert_eq!(
+        cont.status,
+        reference.status,
+        "{}: {}",
+        T::NAME,
+        cont.message
+    );
     assert!(esc.warm, "{}: {}", T::NAME, esc.note);
     assert_eq!(esc.from, T::NAME);
     assert!(esc.lambda <= plain.lambda_reached.to_f64());
     assert!(esc.pivots_fx128 > 0 && cont.info.pivots == esc.pivots_before + esc.pivots_fx128);
-    assert!(cont.message.contains("continued in f128"), "{}", cont.message);
+    assert!(
+        cont.message.contains("continued in f128"),
+        "{}",
+        cont.message
+    );
     // the part before the restart is the working precision's own
     assert!(esc.kept_segments > 0, "{}: nothing kept", T::NAME);
     let (a, b) = (lambdas(&cont), lambdas(&reference));
     assert_eq!(a.len(), b.len(), "{}: {a:?} vs {b:?}", T::NAME);
     for (x, y) in a.iter().zip(&b) {
-        assert!((x - y).abs() <= tol * y.abs().max(1.0), "{}: {a:?} vs {b:?}", T::NAME);
+        assert!(
+            (x - y).abs() <= tol * y.abs().max(1.0),
+            "{}: {a:?} vs {b:?}",
+            T::NAME
+        );
     }
     let ze = z_error(&cont, &reference);
     assert!(ze <= tol, "{}: z error {ze:e}", T::NAME);
     // residuals measured on the original problem, within the precision's guard
-    assert!(cont.info.residual.worst() <= T::eps().to_f64().sqrt(), "{:?}", cont.info.residual);
+    assert!(
+        cont.info.residual.worst() <= T::eps().to_f64().sqrt(),
+        "{:?}",
+        cont.info.residual
+    );
 }
 
 // the full block's basis has condition about 2.9 / delta, the earlier ones at
@@ -135,7 +169,11 @@ fn setting_off_or_in_fx128_changes_nothing() {
     assert!(a.status.is_success() && b.info.escalation.is_none());
     assert_eq!(lambdas(&a), lambdas(&b));
     // fx128 itself never escalates
-    let c = plcp::solve(&neumann::<fx128>(6, 1e-5), &settings(Method::Lemke, 1e-28, true)).unwrap();
+    let c = plcp::solve(
+        &neumann::<fx128>(6, 1e-5),
+        &settings(Method::Lemke, 1e-28, true),
+    )
+    .unwrap();
     assert_eq!(c.status, Status::IllConditioned);
     assert!(c.info.escalation.is_none());
 }

@@ -50,14 +50,25 @@ fn rel(a: f64, b: f64) -> f64 {
 /// breakpoints and `z` to `tol` relative.
 fn check<T: Scalar>(name: &str, path: &Path<T>, reference: &Path<fx128>, zscale: f64, tol: f64) {
     assert_eq!(
-        path.status, reference.status,
+        path.status,
+        reference.status,
         "{name} ({}): {}",
-        T::NAME, path.message
+        T::NAME,
+        path.message
     );
     let (a, b) = (lambdas(path), lambdas(reference));
-    assert_eq!(a.len(), b.len(), "{name} ({}): breakpoints {a:?} vs {b:?}", T::NAME);
+    assert_eq!(
+        a.len(),
+        b.len(),
+        "{name} ({}): breakpoints {a:?} vs {b:?}",
+        T::NAME
+    );
     for (x, y) in a.iter().zip(&b) {
-        assert!(rel(*x, *y) <= tol, "{name} ({}): breakpoint {x} vs {y}", T::NAME);
+        assert!(
+            rel(*x, *y) <= tol,
+            "{name} ({}): breakpoint {x} vs {y}",
+            T::NAME
+        );
     }
     let (za, zb) = (z_along(path, zscale), z_along(reference, 1.0));
     assert_eq!(za.len(), zb.len(), "{name}: segments");
@@ -82,7 +93,11 @@ fn uniform_and_split_factors_of_1e150_trace_the_unscaled_path() {
     )
     .unwrap();
     assert!(reference.status.is_success());
-    assert_eq!(reference.breakpoints.len(), 3, "the base path has three breakpoints");
+    assert_eq!(
+        reference.breakpoints.len(),
+        3,
+        "the base path has three breakpoints"
+    );
     for (sm, sqd) in [
         (1e150, 1e150),
         (1e-150, 1e-150),
@@ -117,16 +132,30 @@ fn diagonal_near_the_f32_range_has_its_exact_breakpoints() {
     let q = faer::col![3e38, 2e-37];
     let d = faer::col![-3e38, -1e-37];
     let run = |path: &Path<f64>, name: &str| {
-        assert_eq!(path.status, Status::UnboundedRay, "{name}: {}", path.message);
+        assert_eq!(
+            path.status,
+            Status::UnboundedRay,
+            "{name}: {}",
+            path.message
+        );
         let l = lambdas(path);
         assert_eq!(l.len(), 2, "{name}: {l:?}");
-        assert!(rel(l[0], 1.0) <= 1e-14 && rel(l[1], 2.0) <= 1e-14, "{name}: {l:?}");
+        assert!(
+            rel(l[0], 1.0) <= 1e-14 && rel(l[1], 2.0) <= 1e-14,
+            "{name}: {l:?}"
+        );
         let z = path.at(5.0).unwrap().z;
-        assert!(rel(z[0], 4.0) <= 1e-14 && rel(z[1], 3.0) <= 1e-14, "{name}: {z:?}");
+        assert!(
+            rel(z[0], 4.0) <= 1e-14 && rel(z[1], 3.0) <= 1e-14,
+            "{name}: {z:?}"
+        );
     };
     let pr = Plcp::new(m.as_ref(), q.as_ref(), d.as_ref()).unwrap();
     for method in [Method::Lemke, Method::Wolfe] {
-        run(&plcp::solve(&pr, &Settings::with_method(method)).unwrap(), "f64");
+        run(
+            &plcp::solve(&pr, &Settings::with_method(method)).unwrap(),
+            "f64",
+        );
     }
     // in f32 the data are representable (1e-37 is a normal f32)
     let p32: Plcp<f32> = pr.cast();
@@ -134,5 +163,8 @@ fn diagonal_near_the_f32_range_has_its_exact_breakpoints() {
     assert_eq!(path.status, Status::UnboundedRay, "f32: {}", path.message);
     let l = lambdas(&path);
     assert_eq!(l.len(), 2, "f32: {l:?}");
-    assert!(rel(l[0], 1.0) <= 1e-5 && rel(l[1], 2.0) <= 1e-5, "f32: {l:?}");
+    assert!(
+        rel(l[0], 1.0) <= 1e-5 && rel(l[1], 2.0) <= 1e-5,
+        "f32: {l:?}"
+    );
 }
