@@ -201,7 +201,7 @@ pub(crate) fn continue_in_fx128<T: Scalar>(
         let seg = &path.segments[k];
         // inside the segment, not at its start: a breakpoint rounded to T is
         // off by rounding, and its leaving variable may be negative there in fx128
-        if !(seg.lambda_to > seg.lambda_from) || seg.unbounded {
+        if seg.lambda_to <= seg.lambda_from || !seg.lambda_to.is_finite() || seg.unbounded {
             return Err(format!("segment {k} has no interior to restart in"));
         }
         let mid = fx128::from_f64(seg.lambda_from.to_f64())
