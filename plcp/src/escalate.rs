@@ -215,17 +215,19 @@ pub(crate) fn continue_in_fx128<T: Scalar>(
                 problem.lambda_max().map(|l| fx128::from_f64(l.to_f64())),
             )
             .map_err(|e| e.to_string())?;
-        let rest =
-            crate::solve(&pr, &settings_fx128(settings, Some(basis))).map_err(|e| e.to_string())?;
-        if rest.info.warm_start {
-            Ok(rest)
-        } else {
-            Err(format!(
+        // a probe first: one pivot at most, so that a rejected basis (whose
+        // solve would fall back to a whole cold trace) costs one factorisation
+        let mut probe_settings = settings_fx128(settings, Some(basis.clone()));
+        probe_settings.max_pivots = Some(1);
+        let probe = crate::solve(&pr, &probe_settings).map_err(|e| e.to_string())?;
+        if !probe.info.warm_start {
+            return Err(format!(
                 "fx128 did not accept the basis at L = {:e}: {}",
                 from.to_f64(),
-                rest.info.warm_start_note
-            ))
+                probe.info.warm_start_note
+            ));
         }
+        crate::solve(&pr, &settings_fx128(settings, Some(basis))).map_err(|e| e.to_string())
     };
     // the segment the trouble arose in may itself start where the working
     // precision already erred (its start is where its basis was first formed):
