@@ -11,7 +11,8 @@
 //!
 //! * a uniform factor `gamma` (`R = gamma R'`, `C = C' / gamma` leave
 //!   `R M C = R' M C'` and give `R q = gamma R' q`) brings the largest scaled
-//!   `g_i` to one when it lies outside `[2^-10, 2^10]`: data scaled by `1e-150`,
+//!   `g_i` to one when it lies outside `[2^-100, 2^100]` (and no entry exceeds
+//!   `2^900`, where double-double residual checks overflow): data scaled by `1e-150`,
 //!   or `M` by `1e150` and `q`, `d` by `1e-150`, reach the pivoting as the
 //!   unscaled data would;
 //! * a row whose scaled `g_i` stays below `2^-26` (Ruiz balances maxima only:
@@ -20,7 +21,7 @@
 //!   far as the row's off-diagonal entries allow (they stay at most one, `M_ii`
 //!   is unchanged, column `i` only shrinks).
 //!
-//! Typical data (right-hand side within `2^10` of `M`, no row's below `2^-26`
+//! Typical data (right-hand side within `2^100` of `M`, no row's below `2^-26`
 //! of the largest) keep exactly the scaling of Ruiz on `M`.
 
 use crate::matrix::MatrixRef;
@@ -150,12 +151,16 @@ impl Equilibration {
             }
         }
         // the right-hand side after Ruiz: a uniform factor brings its largest
-        // entry to one, if it lies outside [2^-10, 2^10] (typical data keep
+        // entry to one, if it lies outside [2^-100, 2^100] (typical data keep
         // exactly the scaling of Ruiz on M)
         let gmax = (0..dim).fold(0.0f64, |m, i| m.max(g[i] * r[i]));
-        let gamma = if gmax > 0.0
+        // not for data beyond 2^900 (about 1e271): there the residual check
+        // (products in double-double) overflows, and the path stays unclaimed
+        let huge = a.iter().chain(g.iter()).any(|&v| v > 2f64.powi(900));
+        let gamma = if !huge
+            && gmax > 0.0
             && gmax.is_finite()
-            && !(2f64.powi(-10)..=2f64.powi(10)).contains(&gmax)
+            && !(2f64.powi(-100)..=2f64.powi(100)).contains(&gmax)
         {
             1.0 / gmax
         } else {
@@ -194,7 +199,11 @@ impl Equilibration {
         }
         for i in 0..dim {
             let gi = g[i] * r[i] * gamma;
-            if gi > 0.0 && gi < SMALL_RHS && gi.is_finite() && rowoff[i].is_finite() {
+            if gi > 0.0
+                && gi < SMALL_RHS * (gmax * gamma).max(1.0)
+                && gi.is_finite()
+                && rowoff[i].is_finite()
+            {
                 let t = if rowoff[i] > 0.0 {
                     (1.0 / gi).min(1.0 / rowoff[i])
                 } else {
