@@ -18,8 +18,10 @@ pub struct AnalysisOptions {
     pub t_end: Option<f64>,
     /// Number of evenly spaced times (the breakpoint crossings are added).
     pub samples: usize,
-    /// Re-solve in double-double (`fx128`) when the `f64` path ends early or
-    /// does not satisfy system (9) to 1e-6 (default `true`; only for `f64`).
+    /// Continue in double-double (`fx128`) when the `f64` path ends
+    /// `ill_conditioned` (from where it failed: [`plcp::Settings::escalate`]),
+    /// and re-solve in `fx128` when it ends early otherwise or does not satisfy
+    /// system (9) to 1e-6 (default `true`; only for `f64`).
     pub escalate: bool,
 }
 
@@ -79,10 +81,26 @@ impl Analysis {
             }
         }
         let system = System::assemble(&scene.frame);
-        let mut solution = solve::solve(&system, &options.solve)?;
-        let mut note = None;
+        let escalate = options.escalate && options.solve.precision == plcp::Precision::F64;
+        // an ill_conditioned f64 path is continued in fx128 from where it failed
+        let mut solution = solve::solve_escalating(&system, &options.solve, escalate)?;
+        let mut note = solution.info.escalation.as_ref().map(|e| {
+            let how = if e.warm {
+                format!(
+                    "continued in f128 from Lambda = {:e}, warm-started from the f64 basis there",
+                    e.lambda
+                )
+            } else {
+                format!("re-solved in f128 from Lambda = {:e} ({})", e.lambda, e.note)
+            };
+            format!(
+                "the f64 path was {how} ({} f64 pivots in {:.2} s, {} f128 pivots in {:.2} s), because: {}",
+                e.pivots_before, e.seconds_before, e.pivots_fx128, e.seconds_fx128, e.reason
+            )
+        });
+        // any other poor outcome: the whole path re-solved in fx128
         let poor = |s: &Solution| !s.status.is_success() || s.info.residual.worst() > 1e-6;
-        if options.escalate && options.solve.precision == plcp::Precision::F64 && poor(&solution) {
+        if escalate && poor(&solution) {
             let wide = SolveOptions {
                 precision: plcp::Precision::F128,
                 ..options.solve

@@ -144,8 +144,13 @@ pub fn uses_sparse(system: &System, options: &SolveOptions) -> bool {
     options.method == Method::Wolfe && s.free() + s.modes >= SPARSE_FROM
 }
 
-fn solve_in<T: Scalar>(system: &System, options: &SolveOptions) -> Result<Solution, FramesError> {
+fn solve_in<T: Scalar>(
+    system: &System,
+    options: &SolveOptions,
+    escalate: bool,
+) -> Result<Solution, FramesError> {
     let mut settings = Settings::<T>::with_method(options.method);
+    settings.escalate = escalate;
     let problem = if uses_sparse(system, options) {
         settings.basis = plcp::BasisKind::Sparse;
         system.plcp_sparse::<T>(options.lambda_max)?
@@ -162,6 +167,17 @@ fn solve_in<T: Scalar>(system: &System, options: &SolveOptions) -> Result<Soluti
 /// indeterminate frame (`PlcpError::SingularFreeBlock`); every outcome of the
 /// path itself is a [`Status`] in the solution.
 pub fn solve(system: &System, options: &SolveOptions) -> Result<Solution, FramesError> {
+    solve_escalating(system, options, false)
+}
+
+/// [`solve`], and with `escalate` a path that ends `ill_conditioned` in `f32`
+/// or `f64` is continued in `fx128` from where it failed
+/// ([`plcp::Settings::escalate`]; `Solution::info.escalation` says where and why).
+pub fn solve_escalating(
+    system: &System,
+    options: &SolveOptions,
+    escalate: bool,
+) -> Result<Solution, FramesError> {
     if let Some(l) = options.lambda_max {
         if l.is_nan() || l <= 0.0 {
             return Err(FramesError::invalid(
@@ -171,8 +187,8 @@ pub fn solve(system: &System, options: &SolveOptions) -> Result<Solution, Frames
         }
     }
     match options.precision {
-        Precision::F32 => solve_in::<f32>(system, options),
-        Precision::F64 => solve_in::<f64>(system, options),
-        Precision::F128 => solve_in::<faer::fx128>(system, options),
+        Precision::F32 => solve_in::<f32>(system, options, escalate),
+        Precision::F64 => solve_in::<f64>(system, options, escalate),
+        Precision::F128 => solve_in::<faer::fx128>(system, options, false),
     }
 }

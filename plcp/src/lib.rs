@@ -57,6 +57,7 @@
 
 pub mod basis;
 pub mod error;
+pub mod escalate;
 pub mod io;
 pub mod lemke;
 pub mod linalg;
@@ -73,6 +74,7 @@ pub mod tolerance;
 pub mod wolfe;
 
 pub use error::PlcpError;
+pub use escalate::Escalation;
 pub use lemke::{solve_lcp, LcpSolution};
 pub use path::{Breakpoint, FreeBlockInfo, Info, Path, Point, Ray, Residual, Segment, Status, Var};
 pub use problem::{Lcp, Plcp};
@@ -81,12 +83,25 @@ pub use settings::{BasisKind, Method, Settings};
 
 /// Traces the solution path of `problem` with the method chosen in `settings`.
 ///
+/// With [`Settings::escalate`], a path that ends `IllConditioned` in `f32` or
+/// `f64` is continued in `fx128` ([`escalate`]).
+///
 /// Returns `Err` only for invalid settings, or for [`Method::Lemke`] on a mixed
 /// problem whose free block is singular (use [`Method::Wolfe`] there). Every
 /// outcome of the algorithm itself is a [`Status`] in the returned path.
 pub fn solve<T: Scalar>(problem: &Plcp<T>, settings: &Settings<T>) -> Result<Path<T>, PlcpError> {
     let mut path = solve_unchecked(problem, settings)?;
     guard_residual(&mut path);
+    if settings.escalate && path.status == Status::IllConditioned {
+        escalate::continue_in_fx128(problem, settings, &mut path);
+        if path.info.escalation.is_some() {
+            // the spliced path: start and end measured on the original problem,
+            // the breakpoints keep the residuals their precision measured
+            let both_ends = settings.method == Method::Lemke && problem.free() > 0;
+            measure(problem, &mut path, both_ends);
+            guard_residual(&mut path);
+        }
+    }
     Ok(path)
 }
 

@@ -297,8 +297,13 @@ pub struct Info {
     /// Why a warm basis that was given was not used (singular, or infeasible at
     /// `lambda0`); empty otherwise.
     pub warm_start_note: String,
-    /// Wall-clock seconds of the solve alone.
+    /// Wall-clock seconds of the solve alone (both precisions after a
+    /// continuation in `fx128`).
     pub solve_seconds: f64,
+    /// Set when the path was continued in `fx128` ([`crate::Settings::escalate`]):
+    /// from which `L`, why, and the pivots and time in each precision. The counts
+    /// above then add both runs.
+    pub escalation: Option<crate::escalate::Escalation>,
 }
 
 /// A secondary or unbounded ray: the last point plus `t` times a direction, `t >= 0`.

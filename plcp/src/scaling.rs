@@ -5,7 +5,24 @@
 //! the scaled problem gives `x = C x~` and `w = R^{-1} w~`; complementarity is
 //! unchanged because `w~_i z~_i = (r_i / c_i) w_i z_i`. The scales come from a
 //! few sweeps of Ruiz's method (each row and column divided by the square root
-//! of its largest entry).
+//! of its largest entry). Two more steps equilibrate the right-hand side
+//! `g_i = max(abs(q_i), abs(d_i))` with `M`, so that the tolerances' floors of
+//! one (see [`crate::tolerance`]) are relative to the data, not absolute:
+//!
+//! * a uniform factor `gamma` (`R = gamma R'`, `C = C' / gamma` leave
+//!   `R M C = R' M C'` and give `R q = gamma R' q`) brings the largest scaled
+//!   `g_i` to one when it lies outside `[2^-100, 2^100]` (and no entry exceeds
+//!   `2^900`, where double-double residual checks overflow): data scaled by `1e-150`,
+//!   or `M` by `1e150` and `q`, `d` by `1e-150`, reach the pivoting as the
+//!   unscaled data would;
+//! * a row whose scaled `g_i` stays below `2^-26` (Ruiz balances maxima only:
+//!   in `diag(3e38, 1e-37)` with `q = (3e38, 2e-37)` the second row's `q` ends
+//!   at `3e-38`) is raised against its column (`r_i t`, `c_i / t`, `t > 1`) as
+//!   far as the row's off-diagonal entries allow (they stay at most one, `M_ii`
+//!   is unchanged, column `i` only shrinks).
+//!
+//! Typical data (right-hand side within `2^100` of `M`, no row's below `2^-26`
+//! of the largest) keep exactly the scaling of Ruiz on `M`.
 
 use crate::matrix::MatrixRef;
 use crate::path::Path;
@@ -25,6 +42,11 @@ pub struct Equilibration {
     pub cols: Vec<f64>,
 }
 
+/// A row whose scaled right-hand side stays below this (the largest being
+/// about one) is raised against its column: `2^-26`, about `sqrt(eps)` of
+/// `f64`, where the tolerances' floor of one starts to swallow it.
+const SMALL_RHS: f64 = 1.0 / 67_108_864.0;
+
 fn pow2(x: f64) -> f64 {
     if !(x.is_finite() && x > 0.0) {
         return 1.0;
@@ -34,7 +56,8 @@ fn pow2(x: f64) -> f64 {
 }
 
 impl Equilibration {
-    /// Ruiz equilibration of `M` in `sweeps` sweeps, scales rounded to powers of two.
+    /// Ruiz equilibration of `M` in `sweeps` sweeps, then the right-hand side
+    /// balanced against it (module docs), scales rounded to powers of two.
     ///
     /// On a sparse problem the sweeps run over the stored entries only.
     pub fn ruiz<T: Scalar>(problem: &Plcp<T>, sweeps: usize) -> Self {
@@ -57,6 +80,20 @@ impl Equilibration {
                 )
             }
         };
+        // the size of the right-hand side per row
+        let g: Vec<f64> = (0..dim)
+            .map(|i| {
+                let v = problem.q()[i]
+                    .to_f64()
+                    .abs()
+                    .max(problem.d()[i].to_f64().abs());
+                if v.is_finite() {
+                    v
+                } else {
+                    0.0
+                }
+            })
+            .collect();
         let mut r = vec![1.0f64; dim];
         let mut c = vec![1.0f64; dim];
         let mut rmax = vec![0.0f64; dim];
@@ -113,9 +150,75 @@ impl Equilibration {
                 }
             }
         }
+        // the right-hand side after Ruiz: a uniform factor brings its largest
+        // entry to one, if it lies outside [2^-100, 2^100] (typical data keep
+        // exactly the scaling of Ruiz on M)
+        let gmax = (0..dim).fold(0.0f64, |m, i| m.max(g[i] * r[i]));
+        // not for data beyond 2^900 (about 1e271): there the residual check
+        // (products in double-double) overflows, and the path stays unclaimed
+        let huge = a.iter().chain(g.iter()).any(|&v| v > 2f64.powi(900));
+        let gamma = if !huge
+            && gmax > 0.0
+            && gmax.is_finite()
+            && !(2f64.powi(-100)..=2f64.powi(100)).contains(&gmax)
+        {
+            1.0 / gmax
+        } else {
+            1.0
+        };
+        // a row i whose right-hand side stays far below one (Ruiz balances
+        // maxima only: in diag(3e38, 1e-37) with q = (3e38, 2e-37) the second
+        // row's q ends at 3e-38) is raised with its column lowered, r_i t,
+        // c_i / t, t >= 1, as far as its off-diagonal entries allow: M_ii is
+        // unchanged, the entries of column i only shrink, those of row i stay at
+        // most one; independent for every i
+        let mut rowoff = vec![0.0f64; dim];
+        let mut entry = |i: usize, j: usize, aij: f64| {
+            if i != j {
+                let v = aij * r[i] * c[j];
+                if v > rowoff[i] {
+                    rowoff[i] = v;
+                }
+            }
+        };
+        match rows {
+            None => {
+                for j in 0..dim {
+                    for i in 0..dim {
+                        entry(i, j, a[j * dim + i]);
+                    }
+                }
+            }
+            Some((col_ptr, row_idx)) => {
+                for j in 0..dim {
+                    for k in col_ptr[j]..col_ptr[j + 1] {
+                        entry(row_idx[k], j, a[k]);
+                    }
+                }
+            }
+        }
+        for i in 0..dim {
+            let gi = g[i] * r[i] * gamma;
+            if gi > 0.0
+                && gi < SMALL_RHS * (gmax * gamma).max(1.0)
+                && gi.is_finite()
+                && rowoff[i].is_finite()
+            {
+                let t = if rowoff[i] > 0.0 {
+                    (1.0 / gi).min(1.0 / rowoff[i])
+                } else {
+                    1.0 / gi
+                };
+                if t > 1.0 && t.is_finite() {
+                    r[i] *= t;
+                    c[i] /= t;
+                }
+            }
+        }
+        // fold gamma into the rows and columns: R = gamma R', C = C' / gamma
         Self {
-            rows: r.into_iter().map(pow2).collect(),
-            cols: c.into_iter().map(pow2).collect(),
+            rows: r.into_iter().map(|v| pow2(v * gamma)).collect(),
+            cols: c.into_iter().map(|v| pow2(v / gamma)).collect(),
         }
     }
 

@@ -75,6 +75,16 @@ pub struct Settings<T: Scalar> {
     /// of `q`, as the path from the old `q` (`L = 0`) to the new one (`L = 1`)
     /// with `d = q_new - q_old`. Default `None`.
     pub warm_basis: Option<Vec<Var>>,
+    /// Continue in double-double where the working precision gives up: a path
+    /// in `f32` or `f64` that ends `IllConditioned` (basis condition, a nearly
+    /// singular free block, or the residual guard) is traced on in `fx128` from
+    /// the start of its last trustworthy segment, warm-started from that
+    /// segment's basis, and the rest is spliced into the path rounded to the
+    /// working precision; the status is then the `fx128` run's, and
+    /// [`crate::Info::escalation`] says where, why, and the pivots and time in
+    /// each precision. See [`crate::escalate`]. No effect in `fx128`.
+    /// Default `false`.
+    pub escalate: bool,
 }
 
 /// The representation of the basis inverse (see [`crate::basis`]).
@@ -108,6 +118,7 @@ impl<T: Scalar> Default for Settings<T> {
             scaling: true,
             basis: BasisKind::Block,
             warm_basis: None,
+            escalate: false,
         }
     }
 }

@@ -1,0 +1,383 @@
+//! Continuing a path in `fx128` where the working precision gave up
+//! ([`crate::Settings::escalate`]).
+//!
+//! When a path in `f32` or `f64` ends `ill_conditioned` (a basis too
+//! ill-conditioned for the precision, a nearly singular free block, or the
+//! residual guard), the part traced before the trouble is kept and the rest is
+//! traced in double-double:
+//!
+//! 1. the restart point is the start `L_k` of the last segment whose start is
+//!    trustworthy: the segment the trouble arose in, or, if a breakpoint's
+//!    residual already exceeded `sqrt(eps)`, the segment ending at the first such
+//!    breakpoint; every breakpoint kept lies at or before `L_k` and was measured
+//!    within `sqrt(eps)`; if `fx128` rejects that segment's basis (singular, or
+//!    infeasible inside the segment: the working precision had left the path
+//!    before), earlier segments are tried, `1, 2, 4, 8, ...` segments back;
+//! 2. the problem is converted to `fx128` (exactly: `f32` and `f64` values are
+//!    `fx128` values; the equilibration is recomputed from the same data, so it
+//!    is the same), and traced from the middle of segment `k` (not from `L_k`:
+//!    a breakpoint rounded to `T` is off by rounding, and its leaving variable
+//!    may be slightly negative there in `fx128`) to `lambda_max`, warm-started
+//!    from that segment's basis ([`crate::Settings::warm_basis`]: validated
+//!    there as nonsingular and feasible); its first segment, extended back to
+//!    `L_k` (the same basis, so the same affine solution), replaces segment `k`;
+//! 3. the `fx128` segments and breakpoints are rounded to `T` and spliced after
+//!    the kept ones; the residuals of the start and end are measured on the
+//!    original problem, the breakpoints keep theirs, and the status is the
+//!    `fx128` run's.
+//!
+//! Where a warm start is not possible (no segment traced yet, a path with
+//! turning points, or the basis not accepted in `fx128`), the whole path is
+//! re-solved in `fx128` from `lambda0` instead; [`Escalation`] says which.
+
+use crate::path::{Breakpoint, Path, Point, Ray, Segment, Status, Var};
+use crate::problem::Plcp;
+use crate::scalar::Scalar;
+use crate::settings::{Method, Settings};
+use faer::{fx128, Col};
+
+/// What a continuation in `fx128` did ([`crate::Info::escalation`]).
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Escalation {
+    /// The precision the path started in (`f32`, `f64`).
+    pub from: &'static str,
+    /// The start of the segment from which the path was traced in `fx128`
+    /// (traced from inside it, on its basis; `lambda0` for a whole re-solve).
+    pub lambda: f64,
+    /// Why: the status and message of the path in the working precision.
+    pub reason: String,
+    /// The `fx128` run was warm-started from the basis of the path's segment
+    /// at `lambda`; `false`: the whole path was re-solved in `fx128` from
+    /// `lambda0`, and `note` says why.
+    pub warm: bool,
+    /// Why no warm start (empty when `warm`).
+    pub note: String,
+    /// Segments of the working-precision path kept (before `lambda`).
+    pub kept_segments: usize,
+    /// Pivots and seconds in the working precision (the abandoned run, all of it).
+    pub pivots_before: usize,
+    /// Seconds of the working-precision run.
+    pub seconds_before: f64,
+    /// Pivots of the `fx128` run.
+    pub pivots_fx128: usize,
+    /// Seconds of the `fx128` run (conversion and splicing included).
+    pub seconds_fx128: f64,
+}
+
+/// The segments tried for a warm restart, from `k0` back: `k0, k0 - 1,
+/// k0 - 2, k0 - 4, ...` (doubling steps, at most about `log2(k0) + 2` tries,
+/// each one factorisation in `fx128`), the last one `0`.
+fn restart_candidates(k0: usize) -> Vec<usize> {
+    let mut v = vec![k0];
+    let mut step = 1;
+    while let Some(k) = k0.checked_sub(step) {
+        v.push(k);
+        step *= 2;
+    }
+    if v.last() != Some(&0) {
+        v.push(0);
+    }
+    v
+}
+
+fn col_to<U: Scalar, T: Scalar>(c: &Col<U>) -> Col<T> {
+    Col::from_fn(c.nrows(), |i| T::from_f64(c[i].to_f64()))
+}
+
+/// `fx128` to `T`: `to_f64` rounds the double-double to the nearest `f64`.
+fn down<T: Scalar>(v: fx128) -> T {
+    T::from_f64(v.to_f64())
+}
+
+fn point_to<T: Scalar>(p: &Point<fx128>) -> Point<T> {
+    Point {
+        lambda: down(p.lambda),
+        z: col_to(&p.z),
+        w: col_to(&p.w),
+        u: col_to(&p.u),
+    }
+}
+
+fn settings_fx128<T: Scalar>(s: &Settings<T>, warm: Option<Vec<Var>>) -> Settings<fx128> {
+    Settings {
+        method: s.method,
+        covering: s.covering.as_ref().map(col_to),
+        max_pivots: s.max_pivots,
+        pivot_tol_eps: s.pivot_tol_eps,
+        tie_tol_eps: s.tie_tol_eps,
+        refactor_period: s.refactor_period,
+        max_cond_eps: s.max_cond_eps,
+        refine_tol_eps: s.refine_tol_eps,
+        refine_cond_eps: s.refine_cond_eps,
+        scaling: s.scaling,
+        basis: s.basis,
+        warm_basis: warm,
+        escalate: false,
+    }
+}
+
+/// The segment to restart from: `Some(k)` (keep `segments[..k]`, restart at
+/// `segments[k].lambda_from`), or `None` for a re-solve from `lambda0`, with why.
+fn restart_segment<T: Scalar>(path: &Path<T>) -> Result<usize, String> {
+    if path.segments.is_empty() {
+        return Err("no segment was traced in the working precision".into());
+    }
+    if path.info.turning_points > 0
+        || path
+            .segments
+            .iter()
+            .any(|s| !s.unbounded && s.lambda_to < s.lambda_from)
+    {
+        return Err("the path has turning points".into());
+    }
+    let limit = T::eps().to_f64().sqrt();
+    let mut k = path.segments.len() - 1;
+    if let Some(b) = path
+        .breakpoints
+        .iter()
+        .find(|b| b.residual.worst().is_nan() || b.residual.worst() > limit)
+    {
+        if b.segment == 0 {
+            return Err(format!(
+                "the first breakpoint's residual {:.1e} exceeds sqrt(eps)",
+                b.residual.worst()
+            ));
+        }
+        k = k.min(b.segment - 1);
+    }
+    Ok(k)
+}
+
+/// The basis of `seg` as a warm basis of `p + n` variables: its `z`/`w` per
+/// pair and basic `u`, completed by the free variables it lacks (Lemke: the
+/// reduction drops them again) or, for Wolfe, by the artificial variables of the
+/// dependent rows. `None` if that does not give `p + n` variables.
+fn warm_basis_of<T: Scalar>(
+    seg: &Segment<T>,
+    path: &Path<T>,
+    method: Method,
+    p: usize,
+    n: usize,
+) -> Option<Vec<Var>> {
+    let mut b = seg.basis.clone();
+    let missing_u: Vec<Var> = (0..p).map(Var::U).filter(|v| !b.contains(v)).collect();
+    match method {
+        Method::Lemke => b.extend(missing_u),
+        Method::Wolfe => {
+            let need = (p + n).saturating_sub(b.len());
+            let dep = &path.info.free_block.dependent_rows;
+            if need == dep.len() {
+                b.extend(dep.iter().map(|&k| Var::Artificial(k)));
+            }
+        }
+    }
+    (b.len() == p + n).then_some(b)
+}
+
+/// Continues `path` (of `problem`, solved with `settings`) in `fx128`, if it
+/// ended `ill_conditioned`. Called by [`crate::solve`] when
+/// [`Settings::escalate`] is set; a no-op in `fx128` itself.
+pub(crate) fn continue_in_fx128<T: Scalar>(
+    problem: &Plcp<T>,
+    settings: &Settings<T>,
+    path: &mut Path<T>,
+) {
+    if T::NAME == <fx128 as Scalar>::NAME || path.status != Status::IllConditioned {
+        return;
+    }
+    let timer = std::time::Instant::now();
+    let (p, n) = (problem.free(), problem.n());
+    let reason = format!("{} in {}: {}", path.status.as_str(), T::NAME, path.message);
+    let wide = problem.cast::<fx128>();
+    // a warm continuation from segment k, else a whole re-solve
+    let mut escalation = Escalation {
+        from: T::NAME,
+        reason,
+        pivots_before: path.info.pivots,
+        seconds_before: path.info.solve_seconds,
+        ..Escalation::default()
+    };
+    let attempt = |k: usize, basis: Vec<Var>| -> Result<Path<fx128>, String> {
+        let seg = &path.segments[k];
+        // inside the segment, not at its start: a breakpoint rounded to T is
+        // off by rounding, and its leaving variable may be negative there in fx128
+        if seg.lambda_to <= seg.lambda_from || !seg.lambda_to.is_finite() || seg.unbounded {
+            return Err(format!("segment {k} has no interior to restart in"));
+        }
+        let mid = fx128::from_f64(seg.lambda_from.to_f64())
+            + (fx128::from_f64(seg.lambda_to.to_f64()) - fx128::from_f64(seg.lambda_from.to_f64()))
+                * fx128::from_f64(0.5);
+        let from = mid;
+        let pr = wide
+            .clone()
+            .with_range(
+                from,
+                problem.lambda_max().map(|l| fx128::from_f64(l.to_f64())),
+            )
+            .map_err(|e| e.to_string())?;
+        // a probe first: one pivot at most, so that a rejected basis (whose
+        // solve would fall back to a whole cold trace) costs one factorisation
+        let mut probe_settings = settings_fx128(settings, Some(basis.clone()));
+        probe_settings.max_pivots = Some(1);
+        let probe = crate::solve(&pr, &probe_settings).map_err(|e| e.to_string())?;
+        if !probe.info.warm_start {
+            return Err(format!(
+                "fx128 did not accept the basis at L = {:e}: {}",
+                from.to_f64(),
+                probe.info.warm_start_note
+            ));
+        }
+        crate::solve(&pr, &settings_fx128(settings, Some(basis))).map_err(|e| e.to_string())
+    };
+    // the segment the trouble arose in may itself start where the working
+    // precision already erred (its start is where its basis was first formed):
+    // fx128 checks each basis, and a rejected one sends the restart one segment
+    // back, a few times at most
+    let warm = restart_segment(path).and_then(|k0| {
+        let mut why = String::new();
+        for k in restart_candidates(k0) {
+            let basis = match warm_basis_of(&path.segments[k], path, settings.method, p, n) {
+                Some(b) => b,
+                None => {
+                    why = "the segment's basis does not give one variable per row".into();
+                    continue;
+                }
+            };
+            match attempt(k, basis) {
+                Ok(rest) => return Ok((k, rest)),
+                Err(e) => why = e,
+            }
+        }
+        Err(why)
+    });
+    let (k, rest) = match warm {
+        Ok((k, rest)) => {
+            escalation.warm = true;
+            (k, rest)
+        }
+        Err(why) => {
+            escalation.note = why;
+            match crate::solve(&wide, &settings_fx128(settings, None)) {
+                Ok(rest) => (0, rest),
+                Err(e) => {
+                    path.message = format!(
+                        "{} The continuation in f128 could not run: {e}",
+                        path.message
+                    );
+                    return;
+                }
+            }
+        }
+    };
+    escalation.lambda = if escalation.warm {
+        path.segments[k].lambda_from.to_f64()
+    } else {
+        problem.lambda0().to_f64()
+    };
+    escalation.kept_segments = k;
+    escalation.pivots_fx128 = rest.info.pivots;
+    splice(path, k, rest, &mut escalation);
+    escalation.seconds_fx128 = timer.elapsed().as_secs_f64();
+    path.info.solve_seconds = escalation.seconds_before + escalation.seconds_fx128;
+    path.info.escalation = Some(escalation);
+}
+
+/// Keeps `path.segments[..k]` and the breakpoints up to their end, and appends
+/// `rest` rounded to `T`.
+fn splice<T: Scalar>(path: &mut Path<T>, k: usize, rest: Path<fx128>, esc: &mut Escalation) {
+    path.segments.truncate(k);
+    path.breakpoints.retain(|b| esc.warm && b.segment <= k);
+    for (j, s) in rest.segments.iter().enumerate() {
+        // a warm continuation starts inside segment k, on its basis: its first
+        // segment, extended back, is segment k (the same affine solution)
+        let mut s = s.clone();
+        if esc.warm && j == 0 {
+            let back = fx128::from_f64(esc.lambda) - s.lambda_from;
+            for (from, slope) in [
+                (&mut s.z_from, &s.dz),
+                (&mut s.w_from, &s.dw),
+                (&mut s.u_from, &s.du),
+            ] {
+                for i in 0..from.nrows() {
+                    from[i] += slope[i] * back;
+                }
+            }
+            s.lambda_from = fx128::from_f64(esc.lambda);
+        }
+        path.segments.push(Segment {
+            lambda_from: down(s.lambda_from),
+            lambda_to: down(s.lambda_to),
+            unbounded: s.unbounded,
+            basis: s.basis.clone(),
+            z_from: col_to(&s.z_from),
+            dz: col_to(&s.dz),
+            w_from: col_to(&s.w_from),
+            dw: col_to(&s.dw),
+            u_from: col_to(&s.u_from),
+            du: col_to(&s.du),
+        });
+    }
+    for b in &rest.breakpoints {
+        path.breakpoints.push(Breakpoint {
+            lambda: down(b.lambda),
+            entering: b.entering,
+            leaving: b.leaving,
+            degenerate: b.degenerate,
+            turning: b.turning,
+            segment: b.segment + k,
+            residual: b.residual,
+        });
+    }
+    path.status = rest.status;
+    path.lambda_reached = down(rest.lambda_reached);
+    path.end = point_to(&rest.end);
+    path.ray = rest.ray.as_ref().map(|r| Ray {
+        start: point_to(&r.start),
+        dz: col_to(&r.dz),
+        dw: col_to(&r.dw),
+        du: col_to(&r.du),
+        dlambda: down(r.dlambda),
+    });
+    path.final_basis = rest.final_basis.clone();
+    let how = if esc.warm {
+        format!(
+            "continued in f128 from L = {:e} (warm start from the {} basis there, {} segments of {} kept)",
+            esc.lambda, esc.from, k, esc.from
+        )
+    } else {
+        format!("re-solved in f128 from L = {:e} ({})", esc.lambda, esc.note)
+    };
+    let outcome = if rest.status.is_success() {
+        format!("the f128 run ended {}", rest.status.as_str())
+    } else {
+        format!(
+            "the f128 run failed too: {}: {}",
+            rest.status.as_str(),
+            rest.message
+        )
+    };
+    path.message = format!(
+        "{how} after {}; {outcome}. {}",
+        esc.reason,
+        if rest.status.is_success() {
+            rest.message.as_str()
+        } else {
+            ""
+        }
+    )
+    .trim_end()
+    .to_string();
+    let info = &mut path.info;
+    info.pivots += rest.info.pivots;
+    info.degenerate_pivots += rest.info.degenerate_pivots;
+    info.refactorisations += rest.info.refactorisations;
+    info.refinements += rest.info.refinements;
+    info.turning_points += rest.info.turning_points;
+    info.max_condition = info.max_condition.max(rest.info.max_condition);
+    if !esc.warm {
+        info.start_pivots = rest.info.start_pivots;
+        info.warm_start = rest.info.warm_start;
+        info.warm_start_note = rest.info.warm_start_note.clone();
+        info.free_block = rest.info.free_block.clone();
+    }
+}

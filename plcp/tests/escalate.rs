@@ -1,0 +1,179 @@
+//! `Settings::escalate`: a path that ends `ill_conditioned` in `f32` or `f64` is
+//! continued in `fx128` from its last trustworthy segment, and matches the plain
+//! `fx128` path (breakpoints and `z` along it).
+
+use faer::{fx128, Col, Mat};
+use plcp::{Method, Path, Plcp, Scalar, Settings, Status};
+
+/// `M` = the 1-D Laplacian `tridiag(-1, 2, -1)` of order `n` with ends
+/// `1 + delta` (Neumann ends: nearly singular, the constant vector is almost a
+/// null vector, condition about `n^2 / delta`); an M-matrix, so every `z_i`
+/// that enters stays: with `q_i = 1 + i / 10`, `d = -1` the basis grows to
+/// all of the block, whose basis is ill-conditioned. One more decoupled pair
+/// (`M = 1`, `q = 10`) gives the path a breakpoint after that, at `L = 10`.
+fn neumann<T: Scalar>(n: usize, delta: f64) -> Plcp<T> {
+    let m = Mat::<T>::from_fn(n + 1, n + 1, |i, j| {
+        T::from_f64(if i == n || j == n {
+            if i == j {
+                1.0
+            } else {
+                0.0
+            }
+        } else if i == j {
+            if i == 0 || i == n - 1 {
+                1.0 + delta
+            } else {
+                2.0
+            }
+        } else if i.abs_diff(j) == 1 {
+            -1.0
+        } else {
+            0.0
+        })
+    });
+    let q = Col::<T>::from_fn(n + 1, |i| {
+        T::from_f64(if i == n { 10.0 } else { 1.0 + i as f64 / 10.0 })
+    });
+    let d = Col::<T>::from_fn(n + 1, |_| T::from_f64(-1.0));
+    Plcp::new(m.as_ref(), q.as_ref(), d.as_ref()).unwrap()
+}
+
+fn lambdas<T: Scalar>(p: &Path<T>) -> Vec<f64> {
+    p.breakpoints.iter().map(|b| b.lambda.to_f64()).collect()
+}
+
+/// Largest relative difference of `z` between `a` and the reference at the
+/// midpoints of the reference's bounded segments and one past the last start.
+fn z_error<T: Scalar>(a: &Path<T>, reference: &Path<fx128>) -> f64 {
+    let mut worst = 0.0f64;
+    for s in &reference.segments {
+        let l = if s.unbounded {
+            s.lambda_from.to_f64() + 1.0
+        } else {
+            0.5 * (s.lambda_from.to_f64() + s.lambda_to.to_f64())
+        };
+        let r = s.eval(fx128::from_f64(l));
+        let Some(x) = a.at(T::from_f64(l)) else {
+            return f64::INFINITY;
+        };
+        let big = (0..r.z.nrows()).fold(1e-300f64, |m, i| m.max(r.z[i].to_f64().abs()));
+        for i in 0..r.z.nrows() {
+            worst = worst.max((x.z[i].to_f64() - r.z[i].to_f64()).abs() / big);
+        }
+    }
+    worst
+}
+
+/// The settings of the cases: the basis refactorised (and its condition
+/// estimated) at every pivot, and the working precision asked to give up at a
+/// condition of `max_cond_eps / eps`.
+fn settings<T: Scalar>(method: Method, max_cond_eps: f64, escalate: bool) -> Settings<T> {
+    Settings {
+        escalate,
+        refactor_period: 1,
+        max_cond_eps,
+        ..Settings::with_method(method)
+    }
+}
+
+/// Runs the case in `T` with and without the setting and checks the continued
+/// path against the plain fx128 one to `tol` (breakpoints and z, relative).
+fn check<T: Scalar>(delta: f64, max_cond_eps: f64, method: Method, tol: f64) {
+    let n = 6;
+    let plain = plcp::solve(
+        &neumann::<T>(n, delta),
+        &settings(method, max_cond_eps, false),
+    )
+    .unwrap();
+    assert_eq!(
+        plain.status,
+        Status::IllConditioned,
+        "{}: the case must really end ill_conditioned without the setting: {}",
+        T::NAME,
+        plain.message
+    );
+    assert!(plain.info.escalation.is_none());
+    let reference =
+        plcp::solve(&neumann::<fx128>(n, delta), &Settings::with_method(method)).unwrap();
+    assert_eq!(
+        reference.status,
+        Status::UnboundedRay,
+        "{}",
+        reference.message
+    );
+    let cont = plcp::solve(
+        &neumann::<T>(n, delta),
+        &settings(method, max_cond_eps, true),
+    )
+    .unwrap();
+    let esc = cont.info.escalation.as_ref().expect("escalated");
+    assert_eq!(
+        cont.status,
+        reference.status,
+        "{}: {}",
+        T::NAME,
+        cont.message
+    );
+    assert!(esc.warm, "{}: {}", T::NAME, esc.note);
+    assert_eq!(esc.from, T::NAME);
+    assert!(esc.lambda <= plain.lambda_reached.to_f64());
+    assert!(esc.pivots_fx128 > 0 && cont.info.pivots == esc.pivots_before + esc.pivots_fx128);
+    assert!(
+        cont.message.contains("continued in f128"),
+        "{}",
+        cont.message
+    );
+    // the part before the restart is the working precision's own
+    assert!(esc.kept_segments > 0, "{}: nothing kept", T::NAME);
+    let (a, b) = (lambdas(&cont), lambdas(&reference));
+    assert_eq!(a.len(), b.len(), "{}: {a:?} vs {b:?}", T::NAME);
+    for (x, y) in a.iter().zip(&b) {
+        assert!(
+            (x - y).abs() <= tol * y.abs().max(1.0),
+            "{}: {a:?} vs {b:?}",
+            T::NAME
+        );
+    }
+    let ze = z_error(&cont, &reference);
+    assert!(ze <= tol, "{}: z error {ze:e}", T::NAME);
+    // residuals measured on the original problem, within the precision's guard
+    assert!(
+        cont.info.residual.worst() <= T::eps().to_f64().sqrt(),
+        "{:?}",
+        cont.info.residual
+    );
+}
+
+// the full block's basis has condition about 2.9 / delta, the earlier ones at
+// most 84: f64 gives up at 4.5e6 (max_cond_eps 1e-9), f32 at 126 (1.5e-5)
+
+#[test]
+fn f64_ill_conditioned_path_is_continued_in_fx128() {
+    check::<f64>(1e-5, 1e-9, Method::Lemke, 1e-9);
+    check::<f64>(1e-5, 1e-9, Method::Wolfe, 1e-9);
+}
+
+#[test]
+fn f32_ill_conditioned_path_is_continued_in_fx128() {
+    check::<f32>(1e-1, 1.5e-5, Method::Lemke, 1e-5);
+}
+
+#[test]
+fn setting_off_or_in_fx128_changes_nothing() {
+    // the setting off is the default; on, a path that does not end
+    // ill_conditioned is left as it is
+    assert!(!Settings::<f64>::default().escalate);
+    let pr = neumann::<f64>(6, 1e-5);
+    let a = plcp::solve(&pr, &settings(Method::Lemke, 1e-2, false)).unwrap();
+    let b = plcp::solve(&pr, &settings(Method::Lemke, 1e-2, true)).unwrap();
+    assert!(a.status.is_success() && b.info.escalation.is_none());
+    assert_eq!(lambdas(&a), lambdas(&b));
+    // fx128 itself never escalates
+    let c = plcp::solve(
+        &neumann::<fx128>(6, 1e-5),
+        &settings(Method::Lemke, 1e-28, true),
+    )
+    .unwrap();
+    assert_eq!(c.status, Status::IllConditioned);
+    assert!(c.info.escalation.is_none());
+}
