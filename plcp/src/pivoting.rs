@@ -80,6 +80,9 @@ pub(crate) struct Engine<'a, T: Scalar> {
     since_refactor: usize,
     /// The last condition estimate says entering columns need a refinement step.
     refine_columns: bool,
+    /// The last condition estimate says the basic values need residuals in the
+    /// wide type ([`crate::tolerance::WIDE_REFINE_COND_EPS`]).
+    refine_wide: bool,
     /// The basis representation refines its own solves (cheaper than
     /// [`Engine::refine_column`]: the block basis refines on `S` alone).
     refine_inside: bool,
@@ -155,6 +158,7 @@ impl<'a, T: Scalar> Engine<'a, T> {
             refinements: 0,
             since_refactor: 0,
             refine_columns: false,
+            refine_wide: false,
             refine_inside: false,
             max_cond: 1.0,
             pivot_tol: T::from_f64(settings.pivot_tol_eps) * T::eps(),
@@ -197,6 +201,8 @@ impl<'a, T: Scalar> Engine<'a, T> {
         self.since_refactor = 0;
         self.max_cond = self.max_cond.max(cond);
         self.refine_columns = cond * T::eps().to_f64() > self.settings.refine_cond_eps;
+        self.refine_wide = self.refine_columns
+            && cond * T::eps().to_f64() > crate::tolerance::WIDE_REFINE_COND_EPS;
         // off for every solve but the entering column's (see trace_steps)
         self.refine_inside = self.factor.set_refine(false);
         self.noise = self.pivot_tol * T::from_f64(cond.clamp(1.0, 1e6));
@@ -557,7 +563,7 @@ impl<'a, T: Scalar> Engine<'a, T> {
     /// the rounding of `x` (see [`Self::refine_values_wide`]). Returns the
     /// residuals after refinement.
     fn refine_values(&mut self, mut bx: Col<T>) -> Residual {
-        if self.refine_columns {
+        if self.refine_wide {
             return self.refine_values_wide();
         }
         let mut res = self.residual_of(&bx);
@@ -675,9 +681,19 @@ impl<'a, T: Scalar> Engine<'a, T> {
     /// One refinement step of an entering column `col = B^{-1} a_v`, when the
     /// basis condition estimate says the factorisation loses digits
     /// (`cond * eps > refine_cond_eps`); its residual `a_v - B col` is
-    /// accumulated in [`Scalar::Wide`].
+    /// accumulated in [`Scalar::Wide`] beyond
+    /// [`crate::tolerance::WIDE_REFINE_COND_EPS`], in the working precision
+    /// below.
     fn refine_column(&mut self, v: Var, col: &mut Col<T>) {
-        let (r, _, _) = self.wide_residual(col, Some(v));
+        let r = if self.refine_wide {
+            self.wide_residual(col, Some(v)).0
+        } else {
+            // below the wide threshold the working precision's residual
+            // (a pass in plain arithmetic) does as well
+            let a = var_column(self.m, &self.d, self.p, v);
+            let bc = apply(self.m, &self.d, self.p, &self.basis, col);
+            Col::from_fn(self.dim, |i| a[i] - bc[i])
+        };
         let dc = self.factor.solve(&r);
         let colmax = (0..self.dim).fold(T::zero(), |a, k| a.max(col[k].abs()));
         // the correction spreads rounding noise over every entry: entries below

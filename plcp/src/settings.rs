@@ -57,8 +57,11 @@ pub struct Settings<T: Scalar> {
     /// steps) when its equation residual exceeds `refine_tol_eps * eps`.
     /// Default `1e3`.
     pub refine_tol_eps: f64,
-    /// Refine every entering column (one step) while the basis condition
-    /// estimate times `eps` exceeds this. Default `1e-12`.
+    /// Refine every entering column (one step, its residual accumulated in
+    /// [`Scalar::Wide`]) while the basis condition estimate times `eps`
+    /// exceeds this; beyond [`crate::tolerance::WIDE_REFINE_COND_EPS`] the
+    /// basic values at breakpoints are refined with wide residuals too.
+    /// Default `1e-12`.
     pub refine_cond_eps: f64,
     /// Equilibrate `M` (rows and columns, by powers of two) before pivoting and
     /// unscale the answer. Default `true`. See [`crate::scaling`].
