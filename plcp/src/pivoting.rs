@@ -201,8 +201,12 @@ impl<'a, T: Scalar> Engine<'a, T> {
         self.since_refactor = 0;
         self.max_cond = self.max_cond.max(cond);
         self.refine_columns = cond * T::eps().to_f64() > self.settings.refine_cond_eps;
+        // on a sparse M the wide residual is a pass over the stored entries
+        // (cheap): from the same threshold as the columns; on a dense M it
+        // costs O(n k) per use, and waits for WIDE_REFINE_COND_EPS
         self.refine_wide = self.refine_columns
-            && cond * T::eps().to_f64() > crate::tolerance::WIDE_REFINE_COND_EPS;
+            && (matches!(self.m, MatrixRef::Sparse(_))
+                || cond * T::eps().to_f64() > crate::tolerance::WIDE_REFINE_COND_EPS);
         // off for every solve but the entering column's (see trace_steps)
         self.refine_inside = self.factor.set_refine(false);
         self.noise = self.pivot_tol * T::from_f64(cond.clamp(1.0, 1e6));

@@ -15,7 +15,7 @@
 //! | rank of the free block | a pivot of the full-pivoting LU counts | `abs(u_kk) > sqrt(eps) * max abs(u_11)`... see [`rank_tol`] |
 //! | condition | a basis is ill-conditioned | `cond_1(B D) * eps > max_cond_eps` (default `1e-2`), `D` scaling the columns of `B` to 1-norm about one (powers of two; the estimate is then within a factor `dim` of the best column scaling, van der Sluis) |
 //! | residuals at breakpoints | reported, measured by the trace with the next column solve (one pass over the basic columns, on the scaled system) | equation row `r` relative to `max(1, abs(q_r), abs(L d_r), abs((B x)_r))`: at least the componentwise (Oettli-Prager) backward error, up to the floor of 1; under wide refinement also relative to `max_j abs(B_rj x_j)` |
-//! | refinement | entering columns refined (one step, residual in `Scalar::Wide`); basic values at breakpoints refined | columns: `cond * eps > refine_cond_eps` (default `1e-12`); values: in the working precision while the equation residual `> refine_tol_eps * eps` (default `1e3`, two steps), with wide residuals once `cond * eps >` [`WIDE_REFINE_COND_EPS`] (`1e-9`) |
+//! | refinement | entering columns refined (one step, residual in `Scalar::Wide`); basic values at breakpoints refined | columns: `cond * eps > refine_cond_eps` (default `1e-12`); values: in the working precision while the equation residual `> refine_tol_eps * eps` (default `1e3`, two steps), with wide residuals once `cond * eps >` [`WIDE_REFINE_COND_EPS`] (`1e-9`; on a sparse `M` from `refine_cond_eps`) |
 //! | segment evaluation | [`crate::Segment::eval`] returns a negative `z` or `w` inside its segment as zero | `-v <= abs(slope) 64 eps max(1, abs(L)) + 64 eps abs(v_from)` and `-v > sqrt(eps) max(1, max abs(x))` |
 //! | residuals of points | reported ([`crate::residual::residual`]: start, end, `Path::at`, and every breakpoint for Lemke on a Schur reduction or on request, [`crate::residual::measure_path`]) | equation row `r` relative to `max(1, abs(q_r), abs(L d_r), abs(w_r), max_j abs(M_rj x_j))` |
 //! | residual guard | a path that claims success is downgraded to `ill_conditioned`; the trace stops as `ill_conditioned` at a breakpoint whose residual (after refinement) fails it | largest reported residual `> sqrt(eps)` |
@@ -35,7 +35,10 @@ pub const ROW_NOISE_EPS: f64 = 1e3;
 /// on evidence. The wide residual is a pass over the basic columns in extended
 /// arithmetic (on a dense `M`, `O(n k)` per breakpoint: ten times the path's
 /// cost at `n = 1000`); below `cond ~ 4.5e6` (f64) the working precision's
-/// refinement already leaves forward errors under `1e-9` relative.
+/// refinement already leaves forward errors under `1e-9` relative. On a
+/// sparse `M` (a pass over its stored entries) the wide residuals start with
+/// the column refinement, at `Settings::refine_cond_eps`: the long cantilever's
+/// degenerate plastic multipliers need them from a condition of about `1e5`.
 pub const WIDE_REFINE_COND_EPS: f64 = 1e-9;
 
 /// The rank tolerance of the full-pivoting LU of a free block: `dim * eps * 1e2`
