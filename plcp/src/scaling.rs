@@ -11,7 +11,7 @@
 //!
 //! * a uniform factor `gamma` (`R = gamma R'`, `C = C' / gamma` leave
 //!   `R M C = R' M C'` and give `R q = gamma R' q`) brings the largest scaled
-//!   `g_i` to one when it lies outside `[2^-100, 2^100]` (and no entry exceeds
+//!   `g_i` to one when it lies outside `[max(2^-40, 1e4 eps), 2^40]` ([`RHS_BAND`]) (and no entry exceeds
 //!   `2^900`, where double-double residual checks overflow): data scaled by `1e-150`,
 //!   or `M` by `1e150` and `q`, `d` by `1e-150`, reach the pivoting as the
 //!   unscaled data would;
@@ -21,10 +21,20 @@
 //!   far as the row's off-diagonal entries allow (they stay at most one, `M_ii`
 //!   is unchanged, column `i` only shrinks).
 //!
-//! Typical data (right-hand side within `2^100` of `M`, no row's below `2^-26`
+//! Typical data (right-hand side within `2^40` of `M`, no row's below `2^-26`
 //! of the largest) keep exactly the scaling of Ruiz on `M`.
 
 use crate::matrix::MatrixRef;
+
+/// The right-hand side is brought to one by a uniform factor when its largest
+/// entry after Ruiz lies outside `[max(2^-RHS_BAND, 1e4 eps), 2^RHS_BAND]`
+/// (about `1e+-12` in f64; from `1.2e-3` in f32).
+/// Beyond it the floors of one in the tolerances start to act on data that
+/// are all small (or all large): uniform scaling by `1e-30` or `1e30` traced a
+/// different path (`examples/stiff_hunt.rs`, family `huge`). Within it,
+/// typical data keep Ruiz's scales exactly (a band of `2^10` changed the
+/// f32 path of the suite's near tie at `1e6`).
+pub const RHS_BAND: i32 = 40;
 use crate::path::Path;
 use crate::problem::Plcp;
 use crate::scalar::Scalar;
@@ -151,16 +161,19 @@ impl Equilibration {
             }
         }
         // the right-hand side after Ruiz: a uniform factor brings its largest
-        // entry to one, if it lies outside [2^-100, 2^100] (typical data keep
+        // entry to one, if it lies outside [2^-RHS_BAND, 2^RHS_BAND] (typical data keep
         // exactly the scaling of Ruiz on M)
         let gmax = (0..dim).fold(0.0f64, |m, i| m.max(g[i] * r[i]));
         // not for data beyond 2^900 (about 1e271): there the residual check
         // (products in double-double) overflows, and the path stays unclaimed
         let huge = a.iter().chain(g.iter()).any(|&v| v > 2f64.powi(900));
+        // from below, the floors act once the data near the tolerances
+        // (`1e3 eps`): in f32 that is already at 1e-4
+        let low = 2f64.powi(-RHS_BAND).max(1e4 * T::eps().to_f64());
         let gamma = if !huge
             && gmax > 0.0
             && gmax.is_finite()
-            && !(2f64.powi(-100)..=2f64.powi(100)).contains(&gmax)
+            && !(low..=2f64.powi(RHS_BAND)).contains(&gmax)
         {
             1.0 / gmax
         } else {
