@@ -35,6 +35,7 @@ use crate::linalg::{matmul_seq, matvec};
 use crate::matrix::MatrixRef;
 use crate::path::Var;
 use crate::scalar::Scalar;
+use crate::scaling::pow2;
 use faer::{Col, Mat, MatRef};
 
 /// The column of variable `v` in the system `sum_v a_v v = q` (see [`crate::pivoting`]).
@@ -176,16 +177,6 @@ fn norm1<T: Scalar>(a: MatRef<'_, T>) -> f64 {
     best
 }
 
-/// The power of two nearest the 1-norm `s` of a column (one for a zero or
-/// non-finite norm): scaling by it is exact.
-fn pow2_scale(s: f64) -> f64 {
-    if s > 0.0 && s.is_finite() {
-        2f64.powi(s.log2().round() as i32)
-    } else {
-        1.0
-    }
-}
-
 /// Inverts a square matrix by LU with partial pivoting after scaling its
 /// columns by `1 / scale[j]` (powers of two, exact); `None` if numerically
 /// singular. Returns `B^{-1}` and the 1-norm condition number of the scaled
@@ -201,7 +192,7 @@ fn pow2_scale(s: f64) -> f64 {
 /// `U` is made on the scaled matrix for the same reason.
 fn invert<T: Scalar>(b: MatRef<'_, T>, scale: &[f64]) -> Option<(Mat<T>, f64)> {
     let dim = b.nrows();
-    let sc: Vec<T> = scale.iter().map(|&s| T::from_f64(pow2_scale(s))).collect();
+    let sc: Vec<T> = scale.iter().map(|&s| T::from_f64(pow2(s))).collect();
     let bs = Mat::from_fn(dim, dim, |i, j| b[(i, j)] / sc[j]);
     let (mut inv, umax, umin) = crate::linalg::inverse(bs.as_ref())?;
     if dim > 0 && umin <= umax * T::eps().to_f64() * dim as f64 {
@@ -493,7 +484,7 @@ impl<T: Scalar> BasisFactor<T> for BlockInverse<T> {
         // columns scaled by their full 1-norm (see `invert`)
         let nu: Vec<f64> = col_norms1(self.g.as_ref().subcols(0, k))
             .into_iter()
-            .map(pow2_scale)
+            .map(pow2)
             .collect();
         let (inv, cond_s) = invert(s.as_ref(), &nu)?;
         for b in 0..k {

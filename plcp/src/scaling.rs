@@ -57,7 +57,10 @@ pub struct Equilibration {
 /// `f64`, where the tolerances' floor of one starts to swallow it.
 const SMALL_RHS: f64 = 1.0 / 67_108_864.0;
 
-fn pow2(x: f64) -> f64 {
+/// The power of two nearest `x` (one for a zero or non-finite `x`; exponent
+/// clamped to `+-1000`): scaling by it is exact. Also the column scales of the
+/// basis condition estimate ([`crate::basis`]).
+pub(crate) fn pow2(x: f64) -> f64 {
     if !(x.is_finite() && x > 0.0) {
         return 1.0;
     }
