@@ -7,14 +7,20 @@
 //! ```
 //!
 //! Arguments: `n` (default 1000), repeats (default 5), method `lemke` or
-//! `wolfe`, precision `f32` or `f64`, refactorisation period (default 50). Instance: `path_instance(n, 1)`, as the
+//! `wolfe`, precision `f32` or `f64`, refactorisation period (default: the
+//! solver's, `auto`). Instance: `path_instance(n, 1)`, as the
 //! benches. Prints the best time, pivots and largest breakpoint residual.
 
 use plcp::{Method, Settings};
 use plcp_workspace::random::path_instance;
 use std::time::Instant;
 
-fn run<T: plcp::Scalar>(problem: &plcp::Plcp<f64>, method: Method, repeats: usize, period: usize) {
+fn run<T: plcp::Scalar>(
+    problem: &plcp::Plcp<f64>,
+    method: Method,
+    repeats: usize,
+    period: Option<usize>,
+) {
     let p = problem.cast::<T>();
     let s = Settings::<T> {
         refactor_period: period,
@@ -50,7 +56,7 @@ fn main() {
         "wolfe" => Method::Wolfe,
         _ => Method::Lemke,
     };
-    let period = a.get(4).map_or(50, |s| s.parse().expect("period"));
+    let period = a.get(4).and_then(|s| s.parse().ok());
     let inst = path_instance(n, 1);
     match a.get(3).map_or("f64", String::as_str) {
         "f32" => run::<f32>(&inst.problem, method, repeats, period),

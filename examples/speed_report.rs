@@ -8,7 +8,7 @@
 //!
 //! Options: `--max-n N` (largest n, default 2000), `--only N` (one size),
 //! `--ref-max-n N` (largest n with the fx128 reference, default 500),
-//! `--quick` (refactorisation period 50 only), `--repeats R` (best of at most
+//! `--quick` (the default refactorisation period only), `--repeats R` (best of at most
 //! R runs, default 3; a configuration stops repeating once its runs have
 //! taken 3 s), `--out DIR` (default `out/speed`).
 //!
@@ -17,7 +17,9 @@
 //! `L_max` midway between the `n/2`-th and `(n/2+1)`-th breakpoint.
 //!
 //! Candidates: plcp with method lemke / wolfe, precision f32 / f64,
-//! refactorisation period 10 / 50 / 200, basis block / dense; Clarabel (the
+//! refactorisation period default (`auto`) / 10 / 50 / 200, basis block /
+//! dense, and for the block basis in f64 without column refinement
+//! (`norefine`: `refine_cond_eps` never reached); Clarabel (the
 //! QP `min 1/2 z'Mz + (q + L d)'z, z >= 0`) at `L_max`, and at K = 10 and 100
 //! evenly spaced `L`, with its default tolerances (1e-8) and tight ones (1e-12).
 //!
@@ -33,9 +35,8 @@
 //!
 //! Output: the table on stdout, `report.csv` and `report.svg` (log-log, run
 //! time against z error) in the output directory, then the time per
-//! breakpoint against n and a rough profile (the share of run time spent in
-//! the residual check at every breakpoint, estimated by timing
-//! `plcp::residual::residual` once and multiplying by the number of calls).
+//! breakpoint against n (where the time goes inside a path:
+//! `examples/profile_path.rs` under `perf`).
 
 use plcp::{BasisKind, Method, Path, Plcp, Scalar, Settings};
 use plcp_workspace::random::path_instance;
@@ -184,7 +185,8 @@ fn run_plcp<T: Scalar>(
     n: usize,
     method: Method,
     basis: BasisKind,
-    refactor: usize,
+    refactor: Option<usize>,
+    refine: bool,
     repeats: usize,
     reference: &Reference,
     points: &[f64],
@@ -194,6 +196,12 @@ fn run_plcp<T: Scalar>(
     let mut settings = Settings::<T>::with_method(method);
     settings.basis = basis;
     settings.refactor_period = refactor;
+    let rp = refactor.map_or("auto".to_string(), |p| format!("rp{p}"));
+    if !refine {
+        // column refinement never (the basic values at breakpoints are still
+        // refined on evidence)
+        settings.refine_cond_eps = f64::MAX;
+    }
     let (seconds, path) = best_of(repeats, || plcp::solve(&problem, &settings).expect("valid"));
     let mut z_err = 0.0f64;
     for (l, zr) in points.iter().zip(ref_z) {
@@ -220,10 +228,14 @@ fn run_plcp<T: Scalar>(
     };
     Row {
         n,
-        candidate: format!("{m} {} {b} rp{refactor}", T::NAME),
+        candidate: format!(
+            "{m} {} {b} {rp}{}",
+            T::NAME,
+            if refine { "" } else { " norefine" }
+        ),
         family: format!("{m} {}", T::NAME),
         basis: b.into(),
-        refactor: refactor.to_string(),
+        refactor: refactor.map_or("auto".into(), |p| p.to_string()),
         seconds,
         z_err,
         bp_err: Some(bp_err),
@@ -288,7 +300,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let o = options();
     std::fs::create_dir_all(&o.out)?;
     let mut rows: Vec<Row> = Vec::new();
-    let mut per_bp: Vec<(usize, usize, f64, f64, f64)> = Vec::new();
+    let mut per_bp: Vec<(usize, usize, f64, f64)> = Vec::new();
     let mut refs: Vec<(usize, String)> = Vec::new();
     println!(
         "{:>5} {:<32} {:>10} {:>9} {:>9} {:>5} {:>9} {:<10}",
@@ -307,7 +319,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         } else {
             let settings = Settings::<f64> {
                 basis: BasisKind::Dense,
-                refactor_period: 10,
+                refactor_period: Some(10),
                 ..Settings::default()
             };
             Reference::F64(plcp::solve(problem, &settings).expect("valid"))
@@ -323,22 +335,35 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             .iter()
             .map(|&l| reference.z_at(l).expect("inside the reference path"))
             .collect();
-        let periods: &[usize] = if o.quick { &[50] } else { &[10, 50, 200] };
+        let periods: &[Option<usize>] = if o.quick {
+            &[None]
+        } else {
+            &[None, Some(10), Some(50), Some(200)]
+        };
         for method in [Method::Lemke, Method::Wolfe] {
             for basis in [BasisKind::Block, BasisKind::Dense] {
                 for &rp in periods {
                     for f32_run in [false, true] {
                         let row = if f32_run {
                             run_plcp::<f32>(
-                                problem, n, method, basis, rp, o.repeats, &reference, &points,
-                                &ref_z,
+                                problem, n, method, basis, rp, true, o.repeats, &reference,
+                                &points, &ref_z,
                             )
                         } else {
                             run_plcp::<f64>(
-                                problem, n, method, basis, rp, o.repeats, &reference, &points,
-                                &ref_z,
+                                problem, n, method, basis, rp, true, o.repeats, &reference,
+                                &points, &ref_z,
                             )
                         };
+                        print_row(&row);
+                        rows.push(row);
+                    }
+                    if basis == BasisKind::Block {
+                        // the column refinement's share: the same without it
+                        let row = run_plcp::<f64>(
+                            problem, n, method, basis, rp, false, o.repeats, &reference, &points,
+                            &ref_z,
+                        );
                         print_row(&row);
                         rows.push(row);
                     }
@@ -364,32 +389,16 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
                 rows.push(row);
             }
         }
-        // time per breakpoint and the residual check's share (default settings)
+        // time per breakpoint (default settings)
         let base = rows
             .iter()
-            .find(|r| r.n == n && r.candidate == "lemke f64 block rp50")
+            .find(|r| r.n == n && r.candidate == "lemke f64 block auto")
             .expect("default configuration ran");
-        let res_seconds = {
-            let path = plcp::solve(problem, &Settings::default()).expect("valid");
-            let pt = path.end.clone();
-            let (t, _) = best_of(5, || plcp::residual::residual(problem, &pt));
-            t
-        };
-        // one check per breakpoint in the pivoting loop and one at the end
-        // (plcp/src/pivoting.rs); if the equilibration is not the identity, two
-        // more per segment and one at the end in the unscaling (scaling.rs)
-        let identity = plcp::scaling::Equilibration::ruiz(problem, 8).is_identity();
-        let checks = if identity {
-            base.breakpoints + 1
-        } else {
-            3 * base.breakpoints + 2
-        };
         per_bp.push((
             n,
             base.breakpoints,
             base.seconds,
             base.seconds / base.breakpoints.max(1) as f64,
-            checks as f64 * res_seconds / base.seconds,
         ));
     }
     // CSV
@@ -438,21 +447,17 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         ),
     )?;
     println!("\nreferences: {refs:?}");
-    println!("\ntime per breakpoint (lemke f64 block, refactor period 50) and the residual check's share");
+    println!("\ntime per breakpoint (lemke f64 block, default settings)");
     println!(
-        "{:>5} {:>6} {:>10} {:>14} {:>22}",
-        "n", "bps", "path [s]", "per bp [ms]", "residual share (est.)"
+        "{:>5} {:>6} {:>10} {:>14}",
+        "n", "bps", "path [s]", "per bp [ms]"
     );
-    for (n, b, t, tb, share) in &per_bp {
-        println!(
-            "{n:>5} {b:>6} {t:>10.4} {:>14.4} {:>21.0}%",
-            tb * 1e3,
-            share * 100.0
-        );
+    for (n, b, t, tb) in &per_bp {
+        println!("{n:>5} {b:>6} {t:>10.4} {:>14.4}", tb * 1e3);
     }
     for w in per_bp.windows(2) {
-        let (n0, _, _, t0, _) = w[0];
-        let (n1, _, _, t1, _) = w[1];
+        let (n0, _, _, t0) = w[0];
+        let (n1, _, _, t1) = w[1];
         println!(
             "cost per breakpoint grows as n^{:.2} from n = {n0} to {n1}",
             (t1 / t0).ln() / (n1 as f64 / n0 as f64).ln()

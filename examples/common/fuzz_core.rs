@@ -655,7 +655,7 @@ fn random_settings<T: Scalar>(rng: &mut ChaCha8Rng, n: usize) -> Settings<T> {
         s.basis = BasisKind::Dense;
     }
     if rng.gen_bool(0.1) {
-        s.refactor_period = rng.gen_range(1..5);
+        s.refactor_period = Some(rng.gen_range(1..5));
     }
     if rng.gen_bool(0.05) {
         s.covering = Some(Col::from_fn(n, |_| T::from_f64(random_value(rng))));
@@ -688,7 +688,7 @@ fn solve_plcp<T: Scalar>(cx: &mut Ctx, rng: &mut ChaCha8Rng, pb: &Plcp<T>, tag: 
         );
         let probe = random_value(rng);
         let how = format!(
-            "{tag} {what} (max_pivots {:?}, scaling {}, basis {:?}, refactor_period {}, covering {:?}, pivot_tol_eps {}, max_cond_eps {})",
+            "{tag} {what} (max_pivots {:?}, scaling {}, basis {:?}, refactor_period {:?}, covering {:?}, pivot_tol_eps {}, max_cond_eps {})",
             s.max_pivots,
             s.scaling,
             s.basis,
@@ -721,7 +721,7 @@ fn solve_lcp_in<T: Scalar>(cx: &mut Ctx, rng: &mut ChaCha8Rng, lcp: &Lcp<T>, tag
     let what = format!("solve_lcp/{}", T::NAME);
     let how =
         format!(
-        "{tag} {what} (max_pivots {:?}, scaling {}, basis {:?}, refactor_period {}, covering {:?})",
+        "{tag} {what} (max_pivots {:?}, scaling {}, basis {:?}, refactor_period {:?}, covering {:?})",
         s.max_pivots,
         s.scaling,
         s.basis,

@@ -79,7 +79,7 @@ pub use lemke::{solve_lcp, LcpSolution};
 pub use path::{Breakpoint, FreeBlockInfo, Info, Path, Point, Ray, Residual, Segment, Status, Var};
 pub use problem::{Lcp, Plcp};
 pub use scalar::{Precision, Scalar};
-pub use settings::{BasisKind, Method, Settings};
+pub use settings::{BasisKind, Method, Settings, DEFAULT_REFACTOR_PERIOD};
 
 /// Traces the solution path of `problem` with the method chosen in `settings`.
 ///

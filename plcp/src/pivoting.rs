@@ -487,7 +487,10 @@ impl<'a, T: Scalar> Engine<'a, T> {
         self.x[r] = value;
         self.pivots += 1;
         self.since_refactor += 1;
-        if self.since_refactor >= self.settings.refactor_period {
+        if self
+            .factor
+            .refactor_due(self.since_refactor, self.settings.refactor_period)
+        {
             self.refactor()?;
         }
         Ok(())

@@ -5,6 +5,10 @@ use crate::path::Var;
 use crate::scalar::Scalar;
 use faer::Col;
 
+/// The refactorisation period when [`Settings::refactor_period`] is `None`
+/// (the block basis waits longer on large blocks, see there).
+pub const DEFAULT_REFACTOR_PERIOD: usize = 50;
+
 /// The algorithm that traces the path.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
 pub enum Method {
@@ -48,8 +52,14 @@ pub struct Settings<T: Scalar> {
     /// Ratios within `tie_tol_eps * eps` (relative) count as ties and go to the
     /// lexicographic rule. Default `1e3`.
     pub tie_tol_eps: f64,
-    /// Refactorise the basis every this many pivots. Default `50`.
-    pub refactor_period: usize,
+    /// Refactorise the basis every this many pivots (a refactorisation also
+    /// recomputes the basic values and estimates the condition number).
+    /// Default `None`: every [`DEFAULT_REFACTOR_PERIOD`] pivots, and for the
+    /// block basis ([`BasisKind::Block`]) every `max(50, k)` pivots, `k` the
+    /// order of its block at the last refactorisation, so that inverting the
+    /// block (`O(k^3)`) costs no more than the `O(k^2)` updates in between.
+    /// The sparse basis also refactorises when its eta file grows long.
+    pub refactor_period: Option<usize>,
     /// A basis whose estimated 1-norm condition number times epsilon exceeds this
     /// stops the path with `IllConditioned`. Default `1e-2`.
     pub max_cond_eps: f64,
@@ -114,7 +124,7 @@ impl<T: Scalar> Default for Settings<T> {
             max_pivots: None,
             pivot_tol_eps: 128.0,
             tie_tol_eps: 1e3,
-            refactor_period: 50,
+            refactor_period: None,
             max_cond_eps: 1e-2,
             refine_tol_eps: 1e3,
             refine_cond_eps: 1e-12,
@@ -169,7 +179,7 @@ impl<T: Scalar> Settings<T> {
         pos("max_cond_eps", self.max_cond_eps)?;
         pos("refine_tol_eps", self.refine_tol_eps)?;
         pos("refine_cond_eps", self.refine_cond_eps)?;
-        if self.refactor_period == 0 {
+        if self.refactor_period == Some(0) {
             return Err(PlcpError::Invalid {
                 what: "refactor_period".into(),
                 why: "must be at least 1".into(),

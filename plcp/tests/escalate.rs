@@ -70,7 +70,7 @@ fn z_error<T: Scalar>(a: &Path<T>, reference: &Path<fx128>) -> f64 {
 fn settings<T: Scalar>(method: Method, max_cond_eps: f64, escalate: bool) -> Settings<T> {
     Settings {
         escalate,
-        refactor_period: 1,
+        refactor_period: Some(1),
         max_cond_eps,
         ..Settings::with_method(method)
     }

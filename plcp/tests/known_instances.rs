@@ -808,7 +808,7 @@ fn invalid_settings<T: Scalar>() {
     );
     invalid_what(
         Settings {
-            refactor_period: 0,
+            refactor_period: Some(0),
             ..d()
         },
         "refactor_period",
