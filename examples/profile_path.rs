@@ -8,7 +8,7 @@
 //!
 //! Arguments: `n` (default 1000), repeats (default 5), method `lemke` or
 //! `wolfe`, precision `f32` or `f64`, refactorisation period (default: the
-//! solver's, `auto`). Instance: `path_instance(n, 1)`, as the
+//! solver's, `auto`), `refine_cond_eps` (default: the solver's). Instance: `path_instance(n, 1)`, as the
 //! benches. Prints the best time, pivots and largest breakpoint residual.
 
 use plcp::{Method, Settings};
@@ -20,11 +20,16 @@ fn run<T: plcp::Scalar>(
     method: Method,
     repeats: usize,
     period: Option<usize>,
+    refine_cond_eps: Option<f64>,
 ) {
     let p = problem.cast::<T>();
     let s = Settings::<T> {
         refactor_period: period,
         ..Settings::<T>::with_method(method)
+    };
+    let s = Settings {
+        refine_cond_eps: refine_cond_eps.unwrap_or(s.refine_cond_eps),
+        ..s
     };
     let mut best = f64::INFINITY;
     for _ in 0..repeats {
@@ -46,6 +51,13 @@ fn run<T: plcp::Scalar>(
         );
     }
     println!("best {best:.4} s");
+    let t = Instant::now();
+    let eq = plcp::scaling::Equilibration::ruiz(&p, 8);
+    println!(
+        "of which equilibration (Ruiz, 8 sweeps): {:.4} s (identity: {})",
+        t.elapsed().as_secs_f64(),
+        eq.is_identity()
+    );
 }
 
 fn main() {
@@ -57,9 +69,10 @@ fn main() {
         _ => Method::Lemke,
     };
     let period = a.get(4).and_then(|s| s.parse().ok());
+    let refine = a.get(5).and_then(|s| s.parse().ok());
     let inst = path_instance(n, 1);
     match a.get(3).map_or("f64", String::as_str) {
-        "f32" => run::<f32>(&inst.problem, method, repeats, period),
-        _ => run::<f64>(&inst.problem, method, repeats, period),
+        "f32" => run::<f32>(&inst.problem, method, repeats, period, refine),
+        _ => run::<f64>(&inst.problem, method, repeats, period, refine),
     }
 }
