@@ -70,6 +70,10 @@ fn main() {
     };
     let period = a.get(4).and_then(|s| s.parse().ok());
     let refine = a.get(5).and_then(|s| s.parse().ok());
+    if std::env::var_os("PLCP_SEQ").is_some() {
+        // one thread: faer's global parallelism off
+        faer::set_global_parallelism(faer::Par::Seq);
+    }
     let inst = path_instance(n, 1);
     match a.get(3).map_or("f64", String::as_str) {
         "f32" => run::<f32>(&inst.problem, method, repeats, period, refine),

@@ -31,7 +31,7 @@ mod sparse;
 
 pub(crate) use sparse::{SparseFactor, SparseLu};
 
-use crate::linalg::{matmul_seq, matvec};
+use crate::linalg::{matmul_par, matvec, par_for};
 use crate::matrix::MatrixRef;
 use crate::path::Var;
 use crate::scalar::Scalar;
@@ -747,7 +747,11 @@ impl<T: Scalar> BasisFactor<T> for BlockInverse<T> {
         let k = self.k;
         let ym = self.block_solve(a);
         let rhs = Mat::from_fn(k, 2, |b, c| if c == 0 { ym[b] } else { x[self.bpos[b]] });
-        let prod = matmul_seq(self.g.as_ref().subcols(0, k), rhs.as_ref());
+        let prod = matmul_par(
+            self.g.as_ref().subcols(0, k),
+            rhs.as_ref(),
+            par_for(self.dim * k),
+        );
         let mut bx = Col::from_fn(self.dim, |i| prod[(i, 1)]);
         let sol = Col::from_fn(self.dim, |r| match self.slots[r] {
             Slot::Matrix(b) => ym[b],

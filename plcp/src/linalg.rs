@@ -92,19 +92,33 @@ pub fn matmul<T: Scalar>(a: MatRef<'_, T>, b: MatRef<'_, T>) -> Mat<T> {
     matmul_plain(a, b)
 }
 
+/// Products of at least this many matrix entries per pivot run on faer's
+/// global parallelism ([`faer::get_global_parallelism`]; by default every
+/// core, `faer::set_global_parallelism(faer::Par::Seq)` keeps one); smaller
+/// ones stay on the calling thread, where waking the pool would cost more
+/// than it saves. A pass over `2^18` doubles (2 MB) takes about 0.1 ms.
+pub const PAR_MIN_ENTRIES: usize = 1 << 18;
+
+/// The parallelism for a pass over `entries` matrix entries (see [`PAR_MIN_ENTRIES`]).
+pub fn par_for(entries: usize) -> faer::Par {
+    if entries < PAR_MIN_ENTRIES {
+        faer::Par::Seq
+    } else {
+        faer::get_global_parallelism()
+    }
+}
+
 /// `A B` on the calling thread (for the thin products of the pivoting core; see
 /// [`matvec`]).
 pub fn matmul_seq<T: Scalar>(a: MatRef<'_, T>, b: MatRef<'_, T>) -> Mat<T> {
+    matmul_par(a, b, faer::Par::Seq)
+}
+
+/// `A B` with the given parallelism (native types; the others on the calling thread).
+pub fn matmul_par<T: Scalar>(a: MatRef<'_, T>, b: MatRef<'_, T>, par: faer::Par) -> Mat<T> {
     if T::NATIVE {
         let mut c = Mat::<T>::zeros(a.nrows(), b.ncols());
-        faer::linalg::matmul::matmul(
-            c.as_mut(),
-            faer::Accum::Replace,
-            a,
-            b,
-            T::one(),
-            faer::Par::Seq,
-        );
+        faer::linalg::matmul::matmul(c.as_mut(), faer::Accum::Replace, a, b, T::one(), par);
         return c;
     }
     matmul_plain(a, b)

@@ -169,14 +169,15 @@ impl Equilibration {
         let gmax = (0..dim).fold(0.0f64, |m, i| m.max(g[i] * r[i]));
         // not for data beyond 2^900 (about 1e271): there the residual check
         // (products in double-double) overflows, and the path stays unclaimed
-        let huge = a.iter().chain(g.iter()).any(|&v| v > 2f64.powi(900));
+        // (a pass over M: only when the factor would apply)
+        let huge = || a.iter().chain(g.iter()).any(|&v| v > 2f64.powi(900));
         // from below, the floors act once the data near the tolerances
         // (`1e3 eps`): in f32 that is already at 1e-4
         let low = 2f64.powi(-RHS_BAND).max(1e4 * T::eps().to_f64());
-        let gamma = if !huge
-            && gmax > 0.0
+        let gamma = if gmax > 0.0
             && gmax.is_finite()
             && !(low..=2f64.powi(RHS_BAND)).contains(&gmax)
+            && !huge()
         {
             1.0 / gmax
         } else {
@@ -188,6 +189,16 @@ impl Equilibration {
         // c_i / t, t >= 1, as far as its off-diagonal entries allow: M_ii is
         // unchanged, the entries of column i only shrink, those of row i stay at
         // most one; independent for every i
+        // the rows to raise: right-hand side (after gamma) far below one
+        let small =
+            |gi: f64| gi > 0.0 && gi < SMALL_RHS * (gmax * gamma).max(1.0) && gi.is_finite();
+        if !(0..dim).any(|i| small(g[i] * r[i] * gamma)) {
+            // no row to raise (typical data): the pass over M below is not needed
+            return Self {
+                rows: r.into_iter().map(|v| pow2(v * gamma)).collect(),
+                cols: c.into_iter().map(|v| pow2(v / gamma)).collect(),
+            };
+        }
         let mut rowoff = vec![0.0f64; dim];
         let mut entry = |i: usize, j: usize, aij: f64| {
             if i != j {
@@ -215,11 +226,7 @@ impl Equilibration {
         }
         for i in 0..dim {
             let gi = g[i] * r[i] * gamma;
-            if gi > 0.0
-                && gi < SMALL_RHS * (gmax * gamma).max(1.0)
-                && gi.is_finite()
-                && rowoff[i].is_finite()
-            {
+            if small(gi) && rowoff[i].is_finite() {
                 let t = if rowoff[i] > 0.0 {
                     (1.0 / gi).min(1.0 / rowoff[i])
                 } else {
