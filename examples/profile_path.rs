@@ -51,6 +51,10 @@ fn run<T: plcp::Scalar>(
         );
     }
     println!("best {best:.4} s");
+    // a fingerprint of the pivot sequence's arithmetic (the same with one thread or two)
+    let path = plcp::solve(&p, &s).expect("valid settings");
+    let sum: f64 = path.breakpoints.iter().map(|b| b.lambda.to_f64()).sum();
+    println!("sum of breakpoint L: {sum:.17e}");
     let t = Instant::now();
     let eq = plcp::scaling::Equilibration::ruiz(&p, 8);
     println!(

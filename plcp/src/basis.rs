@@ -37,8 +37,10 @@ use crate::path::Var;
 use crate::scalar::Scalar;
 use crate::scaling::pow2;
 use crate::settings::DEFAULT_REFACTOR_PERIOD;
-use core::cell::RefCell;
-use faer::{Col, Mat, MatRef};
+use crate::tolerance::{REFINE_IDLE_EPS, REFINE_IDLE_RUN};
+use core::cell::{Cell, RefCell};
+use faer::reborrow::ReborrowMut;
+use faer::{Col, Mat, MatMut, MatRef};
 
 /// The column of variable `v` in the system `sum_v a_v v = q` (see [`crate::pivoting`]).
 pub(crate) fn var_column<T: Scalar>(m: MatrixRef<'_, T>, d: &Col<T>, p: usize, v: Var) -> Col<T> {
@@ -155,6 +157,12 @@ pub(crate) trait BasisFactor<T: Scalar> {
     /// [`crate::Settings::refactor_period`]).
     fn refactor_due(&self, since: usize, period: Option<usize>) -> bool {
         since >= period.unwrap_or(DEFAULT_REFACTOR_PERIOD)
+    }
+    /// Whether the last solve was refined inside, when [`Self::set_refine`]
+    /// asked for it (a representation may skip refinement that does nothing).
+    /// Default: true.
+    fn last_solve_refined(&self) -> bool {
+        true
     }
     /// `B^{-T} c` for `c` indexed by basis position; the result is indexed by system row.
     fn solve_transpose(&self, c: &Col<T>) -> Col<T>;
@@ -414,9 +422,11 @@ fn dot_slice<T: Scalar>(x: &[T], y: &[T]) -> T {
 /// target, so these loops would otherwise vectorise at SSE2 width; inlined into
 /// pulp's target-feature functions they use the machine's AVX2 or AVX-512.
 /// Only the order of operations is fixed by the code, so the result is the
-/// same on every machine.
+/// same on every machine. One pass covers the columns `j0..j0 + sinv.ncols()`
+/// of `S^{-1}` (`sinv`: those columns, rows `0..k`).
 struct FlushPass<'a, T: Scalar> {
-    sinv: &'a mut Mat<T>,
+    sinv: MatMut<'a, T>,
+    j0: usize,
     pending: &'a Pending<T>,
     k: usize,
     ar: Option<&'a [T]>,
@@ -429,12 +439,14 @@ impl<T: Scalar> pulp::WithSimd for FlushPass<'_, T> {
     #[inline(always)]
     fn with_simd<S: pulp::Simd>(self, _simd: S) {
         let FlushPass {
-            sinv,
+            mut sinv,
+            j0,
             pending,
             k,
             ar,
             mut acc,
         } = self;
+        let cols = j0..j0 + sinv.ncols();
         let mut accumulate = |col: &[T], j: usize| {
             if let (Some(acc), Some(ar)) = (acc.as_deref_mut(), ar) {
                 axpy_slice(acc, col, ar[j]);
@@ -443,8 +455,8 @@ impl<T: Scalar> pulp::WithSimd for FlushPass<'_, T> {
         match pending {
             Pending::Column { b, y } => {
                 let piv = y[*b];
-                for j in 0..k {
-                    let col = column_slice(sinv, j, k);
+                for j in cols {
+                    let col = column_slice(sinv.rb_mut(), j - j0);
                     let f = col[*b] / piv;
                     axpy_slice(col, y, -f);
                     col[*b] = f;
@@ -453,29 +465,72 @@ impl<T: Scalar> pulp::WithSimd for FlushPass<'_, T> {
             }
             Pending::Grow { c, y, sigma } => {
                 let old = k - 1;
-                for j in 0..old {
-                    let col = column_slice(sinv, j, k);
-                    let f = dot_slice(c, &col[..old]) / *sigma;
-                    axpy_slice(&mut col[..old], y, f);
-                    col[old] = -f;
+                for j in cols {
+                    let col = column_slice(sinv.rb_mut(), j - j0);
+                    if j < old {
+                        let f = dot_slice(c, &col[..old]) / *sigma;
+                        axpy_slice(&mut col[..old], y, f);
+                        col[old] = -f;
+                    } else {
+                        // the new column
+                        for (e, yb) in col.iter_mut().zip(y.iter()) {
+                            *e = -*yb / *sigma;
+                        }
+                        col[old] = T::one() / *sigma;
+                    }
                     accumulate(col, j);
                 }
-                let col = column_slice(sinv, old, k);
-                for (e, yb) in col.iter_mut().zip(y.iter()) {
-                    *e = -*yb / *sigma;
-                }
-                col[old] = T::one() / *sigma;
-                accumulate(col, old);
             }
             Pending::Row { a, c, u, ga } => {
-                for j in 0..k {
-                    let col = column_slice(sinv, j, k);
+                for j in cols {
+                    let col = column_slice(sinv.rb_mut(), j - j0);
                     let g = dot_slice(c, col);
                     let f = if j == *a { g - T::one() } else { g } / *ga;
                     axpy_slice(col, u, -f);
                     accumulate(col, j);
                 }
             }
+        }
+    }
+}
+
+/// Whether the block basis's column refinement is paused (see
+/// [`crate::tolerance::REFINE_IDLE_EPS`]).
+#[derive(Clone, Copy, Debug, Default)]
+struct Idle {
+    /// Rounding-level corrections in a row.
+    run: usize,
+    /// The length of the current pause (0: not pausing).
+    pause: usize,
+    /// Solves left to skip.
+    skip: usize,
+}
+
+impl Idle {
+    /// The state after a refined solve whose correction was `small` or not.
+    fn after(self, small: bool) -> Idle {
+        if !small {
+            return Idle::default();
+        }
+        if self.pause > 0 {
+            // a probe during a pause found nothing: pause twice as long
+            let pause = (2 * self.pause).min(64);
+            return Idle {
+                run: 0,
+                pause,
+                skip: pause,
+            };
+        }
+        if self.run + 1 >= REFINE_IDLE_RUN {
+            return Idle {
+                run: 0,
+                pause: 8,
+                skip: 8,
+            };
+        }
+        Idle {
+            run: self.run + 1,
+            ..self
         }
     }
 }
@@ -498,6 +553,10 @@ pub(crate) struct BlockInverse<T: Scalar> {
     s: Mat<T>,
     /// Refine solves on the block while set (see [`BlockInverse::block_solve`]).
     refine: bool,
+    /// Whether the last solve was refined.
+    refined: Cell<bool>,
+    /// The pause of the refinement when it does nothing.
+    idle: Cell<Idle>,
     /// [`SMALL_DIM`] (the unit tests lower it).
     small_dim: usize,
     /// The basic matrix columns, `dim x k` (in `dim x c` allocated, see `reserve`).
@@ -528,6 +587,8 @@ impl<T: Scalar> BlockInverse<T> {
             pending: RefCell::new(None),
             s: Mat::zeros(cap, cap),
             refine: false,
+            refined: Cell::new(false),
+            idle: Cell::new(Idle::default()),
             small_dim: SMALL_DIM,
             g: Mat::zeros(dim, cap),
             bpos: Vec::new(),
@@ -563,15 +624,43 @@ impl<T: Scalar> BlockInverse<T> {
             let y = matvec(sinv.as_ref().submatrix(0, 0, k, k), x);
             return Some(y.iter().copied().collect());
         };
-        let mut acc = ar.map(|_| vec![T::zero(); k]);
-        pulp::Arch::new().dispatch(FlushPass {
-            sinv: &mut sinv,
-            pending: &pending,
-            k,
-            ar,
-            acc: acc.as_deref_mut(),
-        });
-        acc
+        // two halves of the columns, each with its own accumulator, summed at
+        // the end: on two threads when the block is large, with the same
+        // arithmetic either way (the result does not depend on the threads)
+        let half = k / 2;
+        let (lo, hi) = sinv
+            .as_mut()
+            .submatrix_mut(0, 0, k, k)
+            .split_at_col_mut(half);
+        let mut acc_lo = ar.map(|_| vec![T::zero(); k]);
+        let mut acc_hi = ar.map(|_| vec![T::zero(); k]);
+        let pass = |sinv, j0, acc| {
+            pulp::Arch::new().dispatch(FlushPass {
+                sinv,
+                j0,
+                pending: &pending,
+                k,
+                ar,
+                acc,
+            })
+        };
+        match par_for(k * k) {
+            faer::Par::Seq => {
+                pass(lo, 0, acc_lo.as_deref_mut());
+                pass(hi, half, acc_hi.as_deref_mut());
+            }
+            _ => {
+                rayon::join(
+                    || pass(lo, 0, acc_lo.as_deref_mut()),
+                    || pass(hi, half, acc_hi.as_deref_mut()),
+                );
+            }
+        }
+        let (mut acc, hi) = (acc_lo?, acc_hi?);
+        for (a, b) in acc.iter_mut().zip(&hi) {
+            *a += *b;
+        }
+        Some(acc)
     }
 
     /// `y_M = S^{-1} a_R`, with one step of iterative refinement on the block
@@ -586,12 +675,26 @@ impl<T: Scalar> BlockInverse<T> {
         let ar: Vec<T> = (0..k).map(|j| a[self.rows[j]]).collect();
         let ym = self.flush(Some(&ar)).expect("a right-hand side was given");
         let mut ym = Col::from_fn(k, |b| ym[b]);
+        self.refined.set(false);
         if self.refine && k > 0 {
+            let idle = self.idle.get();
+            if idle.skip > 0 {
+                self.idle.set(Idle {
+                    skip: idle.skip - 1,
+                    ..idle
+                });
+                return ym;
+            }
             let sinv = self.sinv.borrow();
             let sinv = sinv.as_ref().submatrix(0, 0, k, k);
             let r = Col::from_fn(k, |j| ar[j])
                 - matvec(self.s.as_ref().submatrix(0, 0, k, k), ym.as_ref());
-            ym += matvec(sinv, r.as_ref());
+            let dy = matvec(sinv, r.as_ref());
+            let big = |v: &Col<T>| (0..k).fold(0.0f64, |m, i| m.max(v[i].to_f64().abs()));
+            let small = big(&dy) <= REFINE_IDLE_EPS * T::eps().to_f64() * big(&ym);
+            ym += dy;
+            self.refined.set(true);
+            self.idle.set(idle.after(small));
         }
         ym
     }
@@ -627,11 +730,10 @@ impl<T: Scalar> BlockInverse<T> {
     }
 }
 
-/// Rows `0..len` of column `j` of an owned (column-major) matrix, as a slice.
+/// Column `j` of a view into an owned (column-major) matrix, as a slice.
 #[inline(always)]
-fn column_slice<T: Scalar>(m: &mut Mat<T>, j: usize, len: usize) -> &mut [T] {
+fn column_slice<T: Scalar>(m: MatMut<'_, T>, j: usize) -> &mut [T] {
     m.col_mut(j)
-        .subrows_mut(0, len)
         .try_as_col_major_mut()
         .expect("an owned matrix is column-major")
         .as_slice_mut()
@@ -647,6 +749,8 @@ impl<T: Scalar> BasisFactor<T> for BlockInverse<T> {
     ) -> Option<f64> {
         let dim = self.dim;
         *self.pending.get_mut() = None;
+        // a new inverse: its refinement proves itself anew
+        self.idle.set(Idle::default());
         self.reserve(
             basis
                 .iter()
@@ -779,6 +883,10 @@ impl<T: Scalar> BasisFactor<T> for BlockInverse<T> {
         }
     }
 
+    fn last_solve_refined(&self) -> bool {
+        self.refined.get()
+    }
+
     fn set_refine(&mut self, on: bool) -> bool {
         // Below this order the caller's full refinement step (two passes over
         // the basic columns) costs little, and it stays the reference: the two
@@ -858,7 +966,7 @@ impl<T: Scalar> BasisFactor<T> for BlockInverse<T> {
                     return false;
                 };
                 let c = self.g_row(i_out);
-                let u: Vec<T> = column_slice(self.sinv.get_mut(), a, k).to_vec();
+                let u: Vec<T> = (0..k).map(|bb| self.sinv.get_mut()[(bb, a)]).collect();
                 let ga = dot_slice(&c, &u);
                 *self.pending.get_mut() = Some(Pending::Row { a, c, u, ga });
                 self.rows[a] = i_out;

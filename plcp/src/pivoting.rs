@@ -835,8 +835,9 @@ impl<'a, T: Scalar> Engine<'a, T> {
             }
             if self.refine_columns {
                 if self.refine_inside {
-                    // refined inside the solve above
-                    self.refinements += 1;
+                    // refined inside the solve above (unless the basis found
+                    // its refinement idle, see tolerance::REFINE_IDLE_EPS)
+                    self.refinements += usize::from(self.factor.last_solve_refined());
                 } else {
                     self.refine_column(driver, &mut col);
                 }
