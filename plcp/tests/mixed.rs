@@ -302,7 +302,33 @@ impl Kkt {
             DefaultSolver::new(&pm, &lin, &am, &rhs, &cones, settings).expect("clarabel setup");
         solver.solve();
         match solver.solution.status {
-            SolverStatus::Solved | SolverStatus::AlmostSolved => Ok(solver.solution.x.clone()),
+            SolverStatus::Solved | SolverStatus::AlmostSolved => {
+                // an answer counts only with its own certificate: stationarity
+                // P x + lin + A' z = 0 (Clarabel's sign convention) to 1e-6 of
+                // the data, with multipliers z of sane size. On an unbounded LP
+                // with a dependent equality row Clarabel 0.11 was seen to report
+                // Solved with a feasible, non-optimal x, its z at 3e8 and a
+                // stationarity residual of 3e-2: no verdict then (as for an x
+                // running off, below)
+                let (x, z) = (&solver.solution.x, &solver.solution.z);
+                let scale = lin.iter().fold(1.0f64, |a, v| a.max(v.abs()));
+                let mut worst = 0.0f64;
+                for i in 0..nx {
+                    let mut r = lin[i];
+                    for (j, xj) in x.iter().enumerate() {
+                        r += p_rows[i][j] * xj;
+                    }
+                    for (k, row) in a_rows.iter().enumerate() {
+                        r += row[i] * z[k];
+                    }
+                    worst = worst.max(r.abs());
+                }
+                let zmax = z.iter().fold(0.0f64, |a, v| a.max(v.abs()));
+                if worst > 1e-6 * scale || zmax > 1e6 {
+                    return Err(SolverStatus::NumericalError);
+                }
+                Ok(x.clone())
+            }
             s => Err(s),
         }
     }
