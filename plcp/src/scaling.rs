@@ -75,16 +75,23 @@ impl Equilibration {
     /// On a sparse problem the sweeps run over the stored entries only.
     pub fn ruiz<T: Scalar>(problem: &Plcp<T>, sweeps: usize) -> Self {
         let dim = problem.dim();
-        // dense: |M| column-major; sparse: |M| over the stored entries of
-        // each column, with their rows
-        let (a, rows): (Vec<f64>, Option<SparsePattern<'_>>) = match problem.matrix() {
-            MatrixRef::Dense(m) => {
-                let mut a: Vec<f64> = Vec::with_capacity(dim * dim);
-                for j in 0..dim {
-                    a.extend(m.col(j).iter().map(|v| v.to_f64().abs()));
+        // dense: read in place, a column of |M| at a time into `colbuf`
+        // (a copy of |M| was an allocation of dim^2 doubles per solve);
+        // sparse: |M| over the stored entries of each column, with their rows
+        let dense = match problem.matrix() {
+            MatrixRef::Dense(m) => Some(m),
+            MatrixRef::Sparse(_) => None,
+        };
+        let mut colbuf = vec![0.0f64; if dense.is_some() { dim } else { 0 }];
+        let abs_col = |j: usize, buf: &mut [f64]| {
+            if let Some(m) = dense {
+                for (b, v) in buf.iter_mut().zip(m.col(j).iter()) {
+                    *b = v.to_f64().abs();
                 }
-                (a, None)
             }
+        };
+        let (a, rows): (Vec<f64>, Option<SparsePattern<'_>>) = match problem.matrix() {
+            MatrixRef::Dense(_) => (Vec::new(), None),
             MatrixRef::Sparse(m) => {
                 let (col_ptr, row_idx, val) = m.parts();
                 (
@@ -119,9 +126,8 @@ impl Equilibration {
                 // NaN compares false and is skipped; infinities are caught below
                 match rows {
                     None => {
-                        for ((&aij, &ri), rm) in
-                            a[j * dim..(j + 1) * dim].iter().zip(&r).zip(&mut rmax)
-                        {
+                        abs_col(j, &mut colbuf);
+                        for ((&aij, &ri), rm) in colbuf.iter().zip(&r).zip(&mut rmax) {
                             let v = aij * ri * cj;
                             if v > *rm {
                                 *rm = v;
@@ -170,7 +176,14 @@ impl Equilibration {
         // not for data beyond 2^900 (about 1e271): there the residual check
         // (products in double-double) overflows, and the path stays unclaimed
         // (a pass over M: only when the factor would apply)
-        let huge = || a.iter().chain(g.iter()).any(|&v| v > 2f64.powi(900));
+        let huge = || {
+            let big = 2f64.powi(900);
+            g.iter().any(|&v| v > big)
+                || match dense {
+                    Some(m) => (0..dim).any(|j| m.col(j).iter().any(|v| v.to_f64().abs() > big)),
+                    None => a.iter().any(|&v| v > big),
+                }
+        };
         // from below, the floors act once the data near the tolerances
         // (`1e3 eps`): in f32 that is already at 1e-4
         let low = 2f64.powi(-RHS_BAND).max(1e4 * T::eps().to_f64());
@@ -211,8 +224,9 @@ impl Equilibration {
         match rows {
             None => {
                 for j in 0..dim {
-                    for i in 0..dim {
-                        entry(i, j, a[j * dim + i]);
+                    abs_col(j, &mut colbuf);
+                    for (i, &aij) in colbuf.iter().enumerate() {
+                        entry(i, j, aij);
                     }
                 }
             }
