@@ -99,6 +99,10 @@ pub(crate) struct Engine<'a, T: Scalar> {
     residual_owed: bool,
 }
 
+/// A residual `r` accumulated in the wide type and rounded once, `B x` as
+/// `rhs - r`, and the largest term `max_j abs(B_ij x_j)` of each row.
+type WideResidual<T> = (Col<T>, Col<T>, Col<T>);
+
 /// Mixed-precision refinement of basic values stops once the correction is
 /// within this many roundings (`eps`) of the largest basic value.
 const WIDE_REFINE_EPS: f64 = 4.0;
@@ -568,7 +572,7 @@ impl<'a, T: Scalar> Engine<'a, T> {
     /// residuals after refinement.
     fn refine_values(&mut self, mut bx: Col<T>) -> Residual {
         if self.refine_wide {
-            return self.refine_values_wide();
+            return self.refine_values_wide(None);
         }
         let mut res = self.residual_of(&bx);
         let tol = self.settings.refine_tol_eps * T::eps().to_f64();
@@ -611,9 +615,15 @@ impl<'a, T: Scalar> Engine<'a, T> {
     /// residuals in the working precision stall at `cond * eps`: a degenerate
     /// basic variable (zero in exact arithmetic) then comes out at `eps`
     /// rather than at `cond * eps`.
-    fn refine_values_wide(&mut self) -> Residual {
+    ///
+    /// `first`: the wide residual of the current values if already computed
+    /// ([`Self::wide_residual_pair`]).
+    fn refine_values_wide(&mut self, first: Option<WideResidual<T>>) -> Residual {
         let l = self.row_of(Var::Lambda);
-        let (mut r, mut bx, mut big) = self.wide_residual(&self.x, None);
+        let (mut r, mut bx, mut big) = match first {
+            Some(f) => f,
+            None => self.wide_residual(&self.x, None),
+        };
         let mut last = f64::INFINITY;
         for _ in 0..WIDE_REFINE_STEPS {
             let dx = self.factor.solve(&r);
@@ -650,7 +660,7 @@ impl<'a, T: Scalar> Engine<'a, T> {
     /// cancellation in row `i`: the Oettli-Prager backward error's). `rhs` is
     /// the basic right-hand side (`v = None`) or the column `a_v` of the
     /// entering variable `v` (the residual of `x = B^{-1} a_v`).
-    fn wide_residual(&self, x: &Col<T>, v: Option<Var>) -> (Col<T>, Col<T>, Col<T>) {
+    fn wide_residual(&self, x: &Col<T>, v: Option<Var>) -> WideResidual<T> {
         let rhs: Col<T> = match v {
             Some(v) => var_column(self.m, &self.d, self.p, v),
             None => Col::from_fn(self.dim, |i| self.basic_rhs(i)),
@@ -682,14 +692,58 @@ impl<'a, T: Scalar> Engine<'a, T> {
         (r, bx, big)
     }
 
+    /// [`Self::wide_residual`] of the basic values `x` (`v = None`) and the
+    /// residual `a_v - B col` of the entering column `col = B^{-1} a_v` in one
+    /// pass over the basic columns (each accumulator sees the same operations
+    /// in the same order as in its own pass: the results are identical).
+    fn wide_residual_pair(&self, x: &Col<T>, v: Var, col: &Col<T>) -> (WideResidual<T>, Col<T>) {
+        let dim = self.dim;
+        let mut acc: Vec<T::Wide> = (0..dim).map(|i| self.basic_rhs(i).widen()).collect();
+        let a = var_column(self.m, &self.d, self.p, v);
+        let mut acc_c: Vec<T::Wide> = (0..dim).map(|i| a[i].widen()).collect();
+        let mut big: Col<T> = Col::zeros(dim);
+        let (m, p) = (self.m, self.p);
+        for (k, b) in self.basis.iter().enumerate() {
+            let (xk, ck) = (x[k], col[k]);
+            let (on_x, on_c) = (xk != T::zero(), ck != T::zero());
+            if !on_x && !on_c {
+                continue;
+            }
+            let xa = xk.abs();
+            let mut add = |i: usize, a: T| {
+                if on_x {
+                    acc[i] = T::wide_mul_add(acc[i], a, xk);
+                    big[i] = big[i].max(a.abs() * xa);
+                }
+                if on_c {
+                    acc_c[i] = T::wide_mul_add(acc_c[i], a, ck);
+                }
+            };
+            match *b {
+                Var::U(j) => m.for_col(j, add),
+                Var::Z(j) => m.for_col(p + j, add),
+                Var::Lambda => (0..dim).for_each(|i| add(i, self.d[i])),
+                Var::W(i) => add(p + i, -T::one()),
+                Var::Artificial(i) => add(i, -T::one()),
+            }
+        }
+        let r = Col::from_fn(dim, |i| T::narrow(acc[i]));
+        let bx = Col::from_fn(dim, |i| self.basic_rhs(i) - r[i]);
+        let rc = Col::from_fn(dim, |i| T::narrow(acc_c[i]));
+        ((r, bx, big), rc)
+    }
+
     /// One refinement step of an entering column `col = B^{-1} a_v`, when the
     /// basis condition estimate says the factorisation loses digits
     /// (`cond * eps > refine_cond_eps`); its residual `a_v - B col` is
     /// accumulated in [`Scalar::Wide`] beyond
     /// [`crate::tolerance::WIDE_REFINE_COND_EPS`], in the working precision
     /// below.
-    fn refine_column(&mut self, v: Var, col: &mut Col<T>) {
-        let r = if self.refine_wide {
+    /// `residual`: the wide residual `a_v - B col` if already computed.
+    fn refine_column(&mut self, v: Var, col: &mut Col<T>, residual: Option<Col<T>>) {
+        let r = if let Some(r) = residual {
+            r
+        } else if self.refine_wide {
             self.wide_residual(col, Some(v)).0
         } else {
             // below the wide threshold the working precision's residual
@@ -786,21 +840,41 @@ impl<'a, T: Scalar> Engine<'a, T> {
             if refine_here {
                 self.factor.set_refine(true);
             }
+            // the entering column's wide residual, when a pass for the values computed it
+            let mut col_residual: Option<Col<T>> = None;
             let mut col = match rec.as_deref_mut() {
                 Some(rec) if self.residual_owed => {
-                    let a = var_column(self.m, &self.d, self.p, driver);
-                    let (col, bx) = self.factor.solve_and_apply(
-                        self.m,
-                        &self.d,
-                        self.p,
-                        &self.basis,
-                        &a,
-                        &self.x,
-                    );
-                    if refine_here {
-                        self.factor.set_refine(false);
-                    }
-                    let res = self.refine_values(bx);
+                    let (col, res) = if self.refine_wide {
+                        // the wide residuals recompute B x: no working-precision
+                        // product; the first residual of the values and the
+                        // entering column's share one pass over the basic columns
+                        let col = self.column(driver);
+                        if refine_here {
+                            self.factor.set_refine(false);
+                        }
+                        let first = if self.refine_inside {
+                            None
+                        } else {
+                            let (values, column) = self.wide_residual_pair(&self.x, driver, &col);
+                            col_residual = Some(column);
+                            Some(values)
+                        };
+                        (col, self.refine_values_wide(first))
+                    } else {
+                        let a = var_column(self.m, &self.d, self.p, driver);
+                        let (col, bx) = self.factor.solve_and_apply(
+                            self.m,
+                            &self.d,
+                            self.p,
+                            &self.basis,
+                            &a,
+                            &self.x,
+                        );
+                        if refine_here {
+                            self.factor.set_refine(false);
+                        }
+                        (col, self.refine_values(bx))
+                    };
                     if let Some(b) = rec.breakpoints.last_mut() {
                         b.residual = res;
                     }
@@ -835,7 +909,7 @@ impl<'a, T: Scalar> Engine<'a, T> {
                     // refined inside the solve above
                     self.refinements += 1;
                 } else {
-                    self.refine_column(driver, &mut col);
+                    self.refine_column(driver, &mut col, col_residual.take());
                 }
             }
             let colmax = (0..self.dim).fold(T::zero(), |a, i| a.max(col[i].abs()));
