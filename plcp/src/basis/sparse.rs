@@ -27,6 +27,7 @@ use crate::path::Var;
 use crate::scalar::Scalar;
 use crate::tolerance::ROW_NOISE_EPS;
 use faer::dyn_stack::{MemBuffer, MemStack};
+use faer::perm::PermRef;
 use faer::sparse::linalg::lu::simplicial::{self, SimplicialLu};
 use faer::sparse::linalg::lu::{factorize_symbolic_lu, LuSymbolicParams};
 use faer::sparse::linalg::triangular_solve;
@@ -58,15 +59,32 @@ impl<T: Scalar> SparseFactor<T> {
     /// Factors the square matrix (`col_ptr`, `row_idx` sorted within columns,
     /// `val`); `None` if it is structurally singular or the factorisation fails.
     pub(crate) fn new(dim: usize, col_ptr: &[usize], row_idx: &[usize], val: &[T]) -> Option<Self> {
+        Self::with_order(dim, col_ptr, row_idx, val, None)
+    }
+
+    /// [`Self::new`] with the column order `(forward, inverse)` given (a
+    /// previous factorisation's, see [`SparseLu`]) rather than computed by COLAMD.
+    pub(crate) fn with_order(
+        dim: usize,
+        col_ptr: &[usize],
+        row_idx: &[usize],
+        val: &[T],
+        order: Option<(&[usize], &[usize])>,
+    ) -> Option<Self> {
         let sym = SymbolicSparseColMatRef::new_checked(dim, dim, col_ptr, None, row_idx);
-        let params = LuSymbolicParams {
-            supernodal_flop_ratio_threshold: SupernodalThreshold::FORCE_SIMPLICIAL,
-            ..Default::default()
+        let (col_fwd, col_inv) = match order {
+            Some((f, i)) => (f.to_vec(), i.to_vec()),
+            None => {
+                let params = LuSymbolicParams {
+                    supernodal_flop_ratio_threshold: SupernodalThreshold::FORCE_SIMPLICIAL,
+                    ..Default::default()
+                };
+                // the symbolic phase gives the COLAMD column order
+                let symbolic = factorize_symbolic_lu(sym, params).ok()?;
+                let (cf, ci) = symbolic.col_perm().arrays();
+                (cf.to_vec(), ci.to_vec())
+            }
         };
-        // the symbolic phase gives the COLAMD column order
-        let symbolic = factorize_symbolic_lu(sym, params).ok()?;
-        let (cf, ci) = symbolic.col_perm().arrays();
-        let (col_fwd, col_inv) = (cf.to_vec(), ci.to_vec());
         let mut lu = SimplicialLu::new();
         let mut row_fwd = vec![0usize; dim];
         let mut row_inv = vec![0usize; dim];
@@ -78,7 +96,7 @@ impl<T: Scalar> SparseFactor<T> {
             &mut row_inv,
             &mut lu,
             a,
-            symbolic.col_perm(),
+            PermRef::new_checked(&col_fwd, &col_inv, dim),
             MemStack::new(&mut mem),
         )
         .ok()?;
@@ -100,6 +118,11 @@ impl<T: Scalar> SparseFactor<T> {
             nnz: row_idx.len(),
             norm1,
         })
+    }
+
+    /// Stored entries of the factors `L` and `U`.
+    fn factor_nnz(&self) -> usize {
+        self.lu.l_factor_unsorted().compute_nnz() + self.lu.u_factor_unsorted().compute_nnz()
     }
 
     /// `x[i] <- x[perm[i]]`.
@@ -233,12 +256,30 @@ struct Eta<T: Scalar> {
     val: Vec<T>,
 }
 
+/// A fill-reducing column order and the fill (`nnz(L) + nnz(U)`) of the
+/// factorisation it was computed for.
+struct ColumnOrder {
+    fwd: Vec<usize>,
+    inv: Vec<usize>,
+    fill: usize,
+}
+
+/// A refactorisation reuses the previous column order (COLAMD's symbolic
+/// phase costs several numeric factorisations of a basis of the long form)
+/// until the factors exceed this multiple of the fill COLAMD gave (the next
+/// one then orders afresh): a pivot replaces one column, and the order of the
+/// others stays good.
+const REORDER_FILL: f64 = 1.25;
+
 /// The sparse basis representation (see the module docs).
 pub(crate) struct SparseLu<T: Scalar> {
     dim: usize,
     factor: Option<SparseFactor<T>>,
     etas: Vec<Eta<T>>,
     eta_nnz: usize,
+    /// The column order of the last factorisation, reused while the factors
+    /// it gives stay within [`REORDER_FILL`] of the fill right after COLAMD.
+    order: Option<ColumnOrder>,
     /// Workspace for the CSC form of `B`.
     col_ptr: Vec<usize>,
     row_idx: Vec<usize>,
@@ -252,6 +293,7 @@ impl<T: Scalar> SparseLu<T> {
             factor: None,
             etas: Vec::new(),
             eta_nnz: 0,
+            order: None,
             col_ptr: Vec::new(),
             row_idx: Vec::new(),
             val: Vec::new(),
@@ -318,7 +360,33 @@ impl<T: Scalar> BasisFactor<T> for SparseLu<T> {
         self.etas.clear();
         self.eta_nnz = 0;
         self.factor = None;
-        let f = SparseFactor::new(dim, &self.col_ptr, &self.row_idx, &self.val)?;
+        let reused = self.order.as_ref().and_then(|o| {
+            SparseFactor::with_order(
+                dim,
+                &self.col_ptr,
+                &self.row_idx,
+                &self.val,
+                Some((&o.fwd, &o.inv)),
+            )
+        });
+        if let (Some(f), Some(o)) = (&reused, &self.order) {
+            // the order has aged: a fresh one at the next refactorisation
+            if f.factor_nnz() as f64 > REORDER_FILL * o.fill as f64 {
+                self.order = None;
+            }
+        }
+        let f = match reused {
+            Some(f) => f,
+            None => {
+                let f = SparseFactor::new(dim, &self.col_ptr, &self.row_idx, &self.val)?;
+                self.order = Some(ColumnOrder {
+                    fwd: f.col_fwd.clone(),
+                    inv: f.col_inv.clone(),
+                    fill: f.factor_nnz(),
+                });
+                f
+            }
+        };
         let cond = f.condition();
         // numerically singular: no digit of a solve would be right
         if !cond.is_finite() || cond * T::eps().to_f64() * (dim.max(1) as f64) >= 1.0 {
