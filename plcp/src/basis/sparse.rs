@@ -33,7 +33,7 @@ use faer::sparse::linalg::lu::{factorize_symbolic_lu, LuSymbolicParams};
 use faer::sparse::linalg::triangular_solve;
 use faer::sparse::linalg::SupernodalThreshold;
 use faer::sparse::{SparseColMatRef, SymbolicSparseColMatRef};
-use faer::{Col, Conj, Par};
+use faer::{Col, Conj, Mat, MatMut, Par};
 
 /// A sparse LU factorisation of a square matrix given in CSC form:
 /// `A[row_fwd, col_fwd] = L U` (faer's simplicial factors, unit lower `L`).
@@ -168,6 +168,37 @@ impl<T: Scalar> SparseFactor<T> {
             Par::Seq,
         );
         Self::permute(x, &self.row_inv, &mut tmp);
+    }
+
+    /// `X <- A^{-T} X`, all columns in one sweep over the factors.
+    pub(crate) fn solve_transpose_in_place_mat(&self, mut x: MatMut<'_, T>) {
+        debug_assert_eq!(x.nrows(), self.dim);
+        let mut tmp = Vec::with_capacity(self.dim);
+        let permute = |x: &mut MatMut<'_, T>, perm: &[usize], tmp: &mut Vec<T>| {
+            for c in 0..x.ncols() {
+                let mut col = x.as_mut().col_mut(c);
+                tmp.clear();
+                tmp.extend(perm.iter().map(|&p| col[p]));
+                for (i, v) in tmp.iter().enumerate() {
+                    col[i] = *v;
+                }
+            }
+        };
+        permute(&mut x, &self.col_fwd, &mut tmp);
+        let (l, u) = (self.lu.l_factor_unsorted(), self.lu.u_factor_unsorted());
+        triangular_solve::solve_upper_triangular_transpose_in_place(
+            u,
+            Conj::No,
+            x.as_mut(),
+            Par::Seq,
+        );
+        triangular_solve::solve_unit_lower_triangular_transpose_in_place(
+            l,
+            Conj::No,
+            x.as_mut(),
+            Par::Seq,
+        );
+        permute(&mut x, &self.row_inv, &mut tmp);
     }
 
     /// The 1-norm condition number estimate `||A||_1 est(||A^{-1}||_1)`; not
@@ -412,18 +443,35 @@ impl<T: Scalar> BasisFactor<T> for SparseLu<T> {
     }
 
     fn inverse_rows(&self, rows: &[usize]) -> Option<Vec<Col<T>>> {
-        // row r of B^{-1} is (B^{-T} e_r)'
+        // row r of B^{-1} is (B^{-T} e_r)': all rows in one sweep over the etas
+        // and the factors (each column sees the operations of its own solve)
+        let dim = self.dim;
+        let mut x = Mat::<T>::zeros(dim, rows.len());
+        for (c, &r) in rows.iter().enumerate() {
+            x[(r, c)] = T::one();
+        }
+        for e in self.etas.iter().rev() {
+            for c in 0..rows.len() {
+                let mut col = x.col_mut(c);
+                let mut s = col[e.r];
+                for (&i, &v) in e.idx.iter().zip(&e.val) {
+                    s -= v * col[i];
+                }
+                col[e.r] = s / e.pivot;
+            }
+        }
+        if let Some(f) = &self.factor {
+            f.solve_transpose_in_place_mat(x.as_mut());
+        }
         Some(
-            rows.iter()
-                .map(|&r| {
-                    let mut e = Col::zeros(self.dim);
-                    e[r] = T::one();
-                    let mut row = self.solve_transpose(&e);
+            (0..rows.len())
+                .map(|c| {
+                    let mut row = Col::from_fn(dim, |k| x[(k, c)]);
                     // entries at the rounding level of the row are zeros of the
                     // exact inverse (the lexicographic rule compares them exactly)
-                    let big = (0..self.dim).fold(T::zero(), |a, k| a.max(row[k].abs()));
+                    let big = (0..dim).fold(T::zero(), |a, k| a.max(row[k].abs()));
                     let tol = T::from_f64(ROW_NOISE_EPS) * T::eps() * big;
-                    for k in 0..self.dim {
+                    for k in 0..dim {
                         if row[k].abs() <= tol {
                             row[k] = T::zero();
                         }
