@@ -64,6 +64,8 @@ pub(crate) struct Engine<'a, T: Scalar> {
     /// Right-hand side and parameter direction of the system being traced.
     pub q: Col<T>,
     pub d: Col<T>,
+    /// `(max_i |q_i|, max_i |d_i|)` ([`Self::xscale`]).
+    data_max: (T, T),
     pub basis: Vec<Var>,
     pos: Vec<Option<usize>>,
     factor: Box<dyn BasisFactor<T>>,
@@ -138,6 +140,7 @@ impl<'a, T: Scalar> Engine<'a, T> {
     ) -> Result<Self, String> {
         let dim = m.nrows();
         let n = dim - p;
+        let data_max = Self::data_max(&q, &d);
         let mut e = Self {
             m,
             p,
@@ -145,6 +148,7 @@ impl<'a, T: Scalar> Engine<'a, T> {
             dim,
             q,
             d,
+            data_max,
             basis: basis.clone(),
             pos: vec![None; 3 * n + 2 * p + 1],
             factor: match settings.basis {
@@ -270,15 +274,27 @@ impl<'a, T: Scalar> Engine<'a, T> {
         }
     }
 
+    /// The scale of the basic values: `max(1, |q_i|, |L d_i|, |x_i|)` over
+    /// every row (`x` without `L`'s own position). `max_i |L d_i|` is
+    /// `|L| max_i |d_i|` exactly (rounding is monotone), so `q` and `d`
+    /// contribute their cached maxima and the pass is over `x` alone.
     fn xscale(&self) -> T {
-        let mut s = T::one();
-        for i in 0..self.dim {
-            s = s.max(self.q[i].abs()).max((self.lambda * self.d[i]).abs());
-            if !matches!(self.basis[i], Var::Lambda) {
-                s = s.max(self.x[i].abs());
+        let l = self.row_of(Var::Lambda);
+        let mut s = T::one()
+            .max(self.data_max.0)
+            .max(self.lambda.abs() * self.data_max.1);
+        for (i, v) in self.x.iter().enumerate() {
+            if Some(i) != l {
+                s = s.max(v.abs());
             }
         }
         s
+    }
+
+    /// `(max_i |q_i|, max_i |d_i|)`, cached for [`Self::xscale`].
+    fn data_max(q: &Col<T>, d: &Col<T>) -> (T, T) {
+        let m = |c: &Col<T>| c.iter().fold(T::zero(), |a, v| a.max(v.abs()));
+        (m(q), m(d))
     }
 
     /// Values of `(z, w, u)` now, with `driver` at `theta`.
@@ -547,16 +563,6 @@ impl<'a, T: Scalar> Engine<'a, T> {
         end
     }
 
-    /// The right-hand side of the basic equations: `q + L d` when `L` is
-    /// nonbasic, `q` when it is basic (its column is in `B`).
-    fn basic_rhs(&self, i: usize) -> T {
-        if self.row_of(Var::Lambda).is_none() {
-            self.q[i] + self.lambda * self.d[i]
-        } else {
-            self.q[i]
-        }
-    }
-
     /// Iterative refinement of the basic values at a breakpoint, on evidence.
     ///
     /// While the basis condition estimate is small (`cond * eps <=
@@ -581,7 +587,8 @@ impl<'a, T: Scalar> Engine<'a, T> {
             if res.equation.is_nan() || res.equation <= tol {
                 break;
             }
-            let r = Col::from_fn(self.dim, |i| self.basic_rhs(i) - bx[i]);
+            let rhs = self.rhs();
+            let r = Col::from_fn(self.dim, |i| rhs[i] - bx[i]);
             let dx = self.factor.solve(&r);
             let mut xn = self.x.clone();
             for k in 0..self.dim {
@@ -663,7 +670,7 @@ impl<'a, T: Scalar> Engine<'a, T> {
     fn wide_residual(&self, x: &Col<T>, v: Option<Var>) -> WideResidual<T> {
         let rhs: Col<T> = match v {
             Some(v) => var_column(self.m, &self.d, self.p, v),
-            None => Col::from_fn(self.dim, |i| self.basic_rhs(i)),
+            None => self.rhs(),
         };
         let mut acc: Vec<T::Wide> = (0..self.dim).map(|i| rhs[i].widen()).collect();
         let mut big: Col<T> = Col::zeros(self.dim);
@@ -698,7 +705,8 @@ impl<'a, T: Scalar> Engine<'a, T> {
     /// in the same order as in its own pass: the results are identical).
     fn wide_residual_pair(&self, x: &Col<T>, v: Var, col: &Col<T>) -> (WideResidual<T>, Col<T>) {
         let dim = self.dim;
-        let mut acc: Vec<T::Wide> = (0..dim).map(|i| self.basic_rhs(i).widen()).collect();
+        let rhs = self.rhs();
+        let mut acc: Vec<T::Wide> = (0..dim).map(|i| rhs[i].widen()).collect();
         let a = var_column(self.m, &self.d, self.p, v);
         let mut acc_c: Vec<T::Wide> = (0..dim).map(|i| a[i].widen()).collect();
         let mut big: Col<T> = Col::zeros(dim);
@@ -728,7 +736,7 @@ impl<'a, T: Scalar> Engine<'a, T> {
             }
         }
         let r = Col::from_fn(dim, |i| T::narrow(acc[i]));
-        let bx = Col::from_fn(dim, |i| self.basic_rhs(i) - r[i]);
+        let bx = Col::from_fn(dim, |i| rhs[i] - r[i]);
         let rc = Col::from_fn(dim, |i| T::narrow(acc_c[i]));
         ((r, bx, big), rc)
     }
@@ -783,9 +791,15 @@ impl<'a, T: Scalar> Engine<'a, T> {
     /// scales the residuals of points).
     fn residual_of_scaled(&self, bx: &Col<T>, x: &Col<T>, big: Option<&Col<T>>) -> Residual {
         let mut eq = 0.0f64;
+        let l_nonbasic = self.row_of(Var::Lambda).is_none();
         for i in 0..self.dim {
             let ld = self.lambda * self.d[i];
-            let rhs = self.basic_rhs(i);
+            // the basic right-hand side (see Self::rhs)
+            let rhs = if l_nonbasic {
+                self.q[i] + ld
+            } else {
+                self.q[i]
+            };
             let r = (rhs - bx[i]).abs();
             let mut s = T::one().max(self.q[i].abs()).max(ld.abs()).max(bx[i].abs());
             if let Some(big) = big {
@@ -1269,6 +1283,7 @@ impl<'a, T: Scalar> Engine<'a, T> {
     /// Replaces the system's right-hand side and direction (phase change) and
     /// recomputes the basic values with `L` nonbasic at `lambda`.
     pub(crate) fn reset_system(&mut self, q: Col<T>, d: Col<T>, lambda: T) -> Result<(), String> {
+        self.data_max = Self::data_max(&q, &d);
         self.q = q;
         self.d = d;
         self.lambda = lambda;
