@@ -112,6 +112,31 @@ const WIDE_REFINE_EPS: f64 = 4.0;
 /// At most this many mixed-precision refinement steps per breakpoint.
 const WIDE_REFINE_STEPS: usize = 3;
 
+/// `max_i |v_i|` (zero for an empty slice) in four independent chains: a
+/// single chain of compares waits on each one, and the engine takes this
+/// maximum of vectors of length `p + n` several times per pivot.
+fn max_abs<T: Scalar>(v: &[T]) -> T {
+    let mut m = [T::zero(); 4];
+    let mut chunks = v.chunks_exact(4);
+    for c in &mut chunks {
+        for k in 0..4 {
+            m[k] = m[k].max(c[k].abs());
+        }
+    }
+    for &x in chunks.remainder() {
+        m[0] = m[0].max(x.abs());
+    }
+    m[0].max(m[1]).max(m[2].max(m[3]))
+}
+
+/// [`max_abs`] of a column.
+fn col_max_abs<T: Scalar>(c: &Col<T>) -> T {
+    match c.as_ref().try_as_col_major() {
+        Some(c) => max_abs(c.as_slice()),
+        None => c.iter().fold(T::zero(), |a, v| a.max(v.abs())),
+    }
+}
+
 fn is_comp(v: Var) -> bool {
     matches!(v, Var::W(_) | Var::Z(_))
 }
@@ -279,22 +304,20 @@ impl<'a, T: Scalar> Engine<'a, T> {
     /// `|L| max_i |d_i|` exactly (rounding is monotone), so `q` and `d`
     /// contribute their cached maxima and the pass is over `x` alone.
     fn xscale(&self) -> T {
-        let l = self.row_of(Var::Lambda);
-        let mut s = T::one()
+        let s = T::one()
             .max(self.data_max.0)
             .max(self.lambda.abs() * self.data_max.1);
-        for (i, v) in self.x.iter().enumerate() {
-            if Some(i) != l {
-                s = s.max(v.abs());
-            }
+        let x = self.x.as_ref().try_as_col_major().expect("contiguous");
+        let x = x.as_slice();
+        match self.row_of(Var::Lambda) {
+            Some(l) => s.max(max_abs(&x[..l])).max(max_abs(&x[l + 1..])),
+            None => s.max(max_abs(x)),
         }
-        s
     }
 
     /// `(max_i |q_i|, max_i |d_i|)`, cached for [`Self::xscale`].
     fn data_max(q: &Col<T>, d: &Col<T>) -> (T, T) {
-        let m = |c: &Col<T>| c.iter().fold(T::zero(), |a, v| a.max(v.abs()));
-        (m(q), m(d))
+        (col_max_abs(q), col_max_abs(d))
     }
 
     /// Values of `(z, w, u)` now, with `driver` at `theta`.
@@ -385,7 +408,7 @@ impl<'a, T: Scalar> Engine<'a, T> {
 
     /// The minimum-ratio test with the lexicographic rule. Returns the row and the step.
     fn ratio_test(&self, col: &Col<T>) -> Option<(usize, T)> {
-        let colmax = (0..self.dim).fold(T::zero(), |a, i| a.max(col[i].abs()));
+        let colmax = col_max_abs(&col);
         if colmax == T::zero() {
             return None;
         }
@@ -525,7 +548,7 @@ impl<'a, T: Scalar> Engine<'a, T> {
                 continue;
             }
             let col = self.column(Var::U(j));
-            let colmax = (0..self.dim).fold(T::zero(), |a, i| a.max(col[i].abs()));
+            let colmax = col_max_abs(&col);
             if col[l].abs() > self.noise * colmax
                 && best.as_ref().is_none_or(|(_, c)| col[l].abs() > c[l].abs())
             {
@@ -796,7 +819,7 @@ impl<'a, T: Scalar> Engine<'a, T> {
             Col::from_fn(self.dim, |i| a[i] - bc[i])
         };
         let dc = self.factor.solve(&r);
-        let colmax = (0..self.dim).fold(T::zero(), |a, k| a.max(col[k].abs()));
+        let colmax = col_max_abs(&col);
         // the correction spreads rounding noise over every entry: entries below
         // one rounding of the column are zeros (the sparse basis stores the
         // column as an eta, and a dense one would force refactorisations)
@@ -961,7 +984,7 @@ impl<'a, T: Scalar> Engine<'a, T> {
                     self.refine_column(driver, &mut col, col_residual.take());
                 }
             }
-            let colmax = (0..self.dim).fold(T::zero(), |a, i| a.max(col[i].abs()));
+            let colmax = col_max_abs(&col);
             let rate = match driver {
                 Var::Lambda => T::one(),
                 _ => match self.row_of(Var::Lambda) {
@@ -1155,7 +1178,7 @@ impl<'a, T: Scalar> Engine<'a, T> {
             }
             if let Some((v, _)) = best {
                 let y = self.column(v);
-                let ymax = (0..self.dim).fold(T::zero(), |a, k| a.max(y[k].abs()));
+                let ymax = col_max_abs(&y);
                 if y[l].abs() > self.noise * ymax {
                     // L leaves at its current value; v enters at zero
                     self.degenerate_pivots += 1;
@@ -1204,7 +1227,7 @@ impl<'a, T: Scalar> Engine<'a, T> {
                         continue;
                     }
                     let ytrue = self.column(Var::U(j));
-                    let ymax = (0..self.dim).fold(T::zero(), |acc, k| acc.max(ytrue[k].abs()));
+                    let ymax = col_max_abs(&ytrue);
                     let ptol = self.noise * ymax;
                     if ytrue[rc].abs() <= ptol {
                         continue;
@@ -1267,7 +1290,7 @@ impl<'a, T: Scalar> Engine<'a, T> {
                 continue;
             }
             let y = self.column(Var::U(j));
-            let ymax = (0..self.dim).fold(T::zero(), |a, i| a.max(y[i].abs()));
+            let ymax = col_max_abs(&y);
             let mut best: Option<usize> = None;
             for r in 0..self.dim {
                 if matches!(self.basis[r], Var::W(_))
