@@ -849,6 +849,9 @@ impl<'a, T: Scalar> Engine<'a, T> {
     /// scales the residuals of points).
     fn residual_of_scaled(&self, bx: &Col<T>, x: &Col<T>, big: Option<&Col<T>>) -> Residual {
         let mut eq = 0.0f64;
+        // rows with r <= bound * s cannot raise eq (bound a hair below eq,
+        // far beyond the rounding of r / s): the division only where one may
+        let mut bound = T::zero();
         let l_nonbasic = self.row_of(Var::Lambda).is_none();
         for i in 0..self.dim {
             let ld = self.lambda * self.d[i];
@@ -863,28 +866,36 @@ impl<'a, T: Scalar> Engine<'a, T> {
             if let Some(big) = big {
                 s = s.max(big[i]);
             }
-            eq = eq.max((r / s).to_f64());
+            if r > bound * s {
+                let v = (r / s).to_f64();
+                if v > eq {
+                    eq = v;
+                    bound = T::from_f64(v * (1.0 - 1e-9));
+                }
+            }
         }
+        // feasibility and complementarity of the basic z and w (nonbasic ones are zero)
         let (mut sz, mut sw) = (1.0f64, 1.0f64);
-        let mut zv = vec![0.0f64; self.n];
-        let mut wv = vec![0.0f64; self.n];
         for (r, v) in self.basis.iter().enumerate() {
             match *v {
-                Var::Z(i) => {
-                    zv[i] = x[r].to_f64();
-                    sz = sz.max(zv[i].abs());
-                }
-                Var::W(i) => {
-                    wv[i] = x[r].to_f64();
-                    sw = sw.max(wv[i].abs());
-                }
+                Var::Z(_) => sz = sz.max(x[r].to_f64().abs()),
+                Var::W(_) => sw = sw.max(x[r].to_f64().abs()),
                 _ => {}
             }
         }
         let (mut feas, mut comp) = (0.0f64, 0.0f64);
-        for i in 0..self.n {
-            feas = feas.max(-zv[i] / sz).max(-wv[i] / sw);
-            comp = comp.max((zv[i] * wv[i]).abs() / (sz * sw));
+        for (r, v) in self.basis.iter().enumerate() {
+            match *v {
+                Var::Z(i) => {
+                    let z = x[r].to_f64();
+                    feas = feas.max(-z / sz);
+                    if let Some(rw) = self.row_of(Var::W(i)) {
+                        comp = comp.max((z * x[rw].to_f64()).abs() / (sz * sw));
+                    }
+                }
+                Var::W(_) => feas = feas.max(-x[r].to_f64() / sw),
+                _ => {}
+            }
         }
         Residual {
             equation: eq,
