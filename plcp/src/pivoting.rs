@@ -648,11 +648,15 @@ impl<'a, T: Scalar> Engine<'a, T> {
     ///
     /// `first`: the wide residual of the current values if already computed
     /// ([`Self::wide_residual_pair`]).
-    fn refine_values_wide(&mut self, first: Option<WideResidual<T>>) -> Residual {
+    fn refine_values_wide(&mut self, first: Option<Col<T>>) -> Residual {
         let l = self.row_of(Var::Lambda);
-        let (mut r, mut bx, mut big) = match first {
-            Some(f) => f,
-            None => self.wide_residual(&self.x, None),
+        // B x and the row scales of the current values, once measured
+        let (mut r, mut measured) = match first {
+            Some(r) => (r, None),
+            None => {
+                let (r, bx, big) = self.wide_residual(&self.x, None);
+                (r, Some((bx, big)))
+            }
         };
         let mut last = f64::INFINITY;
         for step in 0..WIDE_REFINE_STEPS {
@@ -680,11 +684,14 @@ impl<'a, T: Scalar> Engine<'a, T> {
                 // working precision measures it as it measures points
                 // (`crate::residual`: within a few roundings of the row's
                 // largest term, the scale it is reported against)
-                (bx, big) = self.plain_residual(&self.x);
+                measured = Some(self.plain_residual(&self.x));
                 break;
             }
-            (r, bx, big) = self.wide_residual(&self.x, None);
+            let (rn, bx, big) = self.wide_residual(&self.x, None);
+            r = rn;
+            measured = Some((bx, big));
         }
+        let (bx, big) = measured.unwrap_or_else(|| self.plain_residual(&self.x));
         // relative to the terms of each row as well (a row whose terms cancel
         // to a small B x keeps the rounding of its largest term)
         self.residual_of_scaled(&bx, &self.x, Some(&big))
@@ -757,17 +764,17 @@ impl<'a, T: Scalar> Engine<'a, T> {
         (r, bx, big)
     }
 
-    /// [`Self::wide_residual`] of the basic values `x` (`v = None`) and the
-    /// residual `a_v - B col` of the entering column `col = B^{-1} a_v` in one
-    /// pass over the basic columns (each accumulator sees the same operations
-    /// in the same order as in its own pass: the results are identical).
-    fn wide_residual_pair(&self, x: &Col<T>, v: Var, col: &Col<T>) -> (WideResidual<T>, Col<T>) {
+    /// The residuals of [`Self::wide_residual`] (`r` alone) of the basic
+    /// values `x` and of the entering column `col = B^{-1} a_v` (`a_v - B
+    /// col`) in one pass over the basic columns (each accumulator sees the
+    /// same operations in the same order as in its own pass: the results are
+    /// identical).
+    fn wide_residual_pair(&self, x: &Col<T>, v: Var, col: &Col<T>) -> (Col<T>, Col<T>) {
         let dim = self.dim;
         let rhs = self.rhs();
         let mut acc: Vec<T::Wide> = (0..dim).map(|i| rhs[i].widen()).collect();
         let a = var_column(self.m, &self.d, self.p, v);
         let mut acc_c: Vec<T::Wide> = (0..dim).map(|i| a[i].widen()).collect();
-        let mut big: Col<T> = Col::zeros(dim);
         let (m, p) = (self.m, self.p);
         for (k, b) in self.basis.iter().enumerate() {
             let (xk, ck) = (x[k], col[k]);
@@ -775,11 +782,9 @@ impl<'a, T: Scalar> Engine<'a, T> {
             if !on_x && !on_c {
                 continue;
             }
-            let xa = xk.abs();
             let mut add = |i: usize, a: T| {
                 if on_x {
                     acc[i] = T::wide_mul_add(acc[i], a, xk);
-                    big[i] = big[i].max(a.abs() * xa);
                 }
                 if on_c {
                     acc_c[i] = T::wide_mul_add(acc_c[i], a, ck);
@@ -794,9 +799,8 @@ impl<'a, T: Scalar> Engine<'a, T> {
             }
         }
         let r = Col::from_fn(dim, |i| T::narrow(acc[i]));
-        let bx = Col::from_fn(dim, |i| rhs[i] - r[i]);
         let rc = Col::from_fn(dim, |i| T::narrow(acc_c[i]));
-        ((r, bx, big), rc)
+        (r, rc)
     }
 
     /// One refinement step of an entering column `col = B^{-1} a_v`, when the

@@ -127,11 +127,14 @@ impl<T: Scalar> SparseFactor<T> {
 
     /// `x[i] <- x[perm[i]]`.
     fn permute(x: &mut Col<T>, perm: &[usize], tmp: &mut Vec<T>) {
+        let x = x
+            .as_mut()
+            .try_as_col_major_mut()
+            .expect("a column is contiguous")
+            .as_slice_mut();
         tmp.clear();
         tmp.extend(perm.iter().map(|&p| x[p]));
-        for (i, v) in tmp.iter().enumerate() {
-            x[i] = *v;
-        }
+        x.copy_from_slice(tmp);
     }
 
     /// `x <- A^{-1} x`.
