@@ -138,18 +138,49 @@ impl<T: Scalar> SparseFactor<T> {
     }
 
     /// `x <- A^{-1} x`.
+    ///
+    /// The triangular solves are column sweeps that skip the columns whose
+    /// multiplier is zero: the right-hand sides of the pivoting (a column of
+    /// `M` or a unit vector, a residual) start sparse, and `L^{-1} a` stays
+    /// sparse over much of the sweep. Otherwise the operations of faer's
+    /// single-column solves, in their order: the same results.
     pub(crate) fn solve_in_place(&self, x: &mut Col<T>) {
         debug_assert_eq!(x.nrows(), self.dim);
         let mut tmp = Vec::with_capacity(self.dim);
         Self::permute(x, &self.row_fwd, &mut tmp);
         let (l, u) = (self.lu.l_factor_unsorted(), self.lu.u_factor_unsorted());
-        triangular_solve::solve_unit_lower_triangular_in_place(
-            l,
-            Conj::No,
-            x.as_mat_mut(),
-            Par::Seq,
-        );
-        triangular_solve::solve_upper_triangular_in_place(u, Conj::No, x.as_mat_mut(), Par::Seq);
+        {
+            let xs = x
+                .as_mut()
+                .try_as_col_major_mut()
+                .expect("a column is contiguous")
+                .as_slice_mut();
+            // unit lower L, its diagonal stored first in each column
+            for j in 0..self.dim {
+                let xj = xs[j];
+                if xj == T::zero() {
+                    continue;
+                }
+                let (rows, vals) = (l.row_idx_of_col_raw(j), l.val_of_col(j));
+                for (&i, &lij) in rows.iter().zip(vals).skip(1) {
+                    xs[i] = xs[i] - lij * xj;
+                }
+            }
+            // upper U, its diagonal stored last in each column
+            for j in (0..self.dim).rev() {
+                if xs[j] == T::zero() {
+                    continue;
+                }
+                let (rows, vals) = (u.row_idx_of_col_raw(j), u.val_of_col(j));
+                let last = vals.len() - 1;
+                debug_assert_eq!(rows[last], j);
+                let xj = xs[j] * (T::one() / vals[last]);
+                xs[j] = xj;
+                for (&i, &uij) in rows[..last].iter().zip(&vals[..last]).rev() {
+                    xs[i] = xs[i] - uij * xj;
+                }
+            }
+        }
         Self::permute(x, &self.col_inv, &mut tmp);
     }
 
