@@ -408,7 +408,7 @@ impl<'a, T: Scalar> Engine<'a, T> {
 
     /// The minimum-ratio test with the lexicographic rule. Returns the row and the step.
     fn ratio_test(&self, col: &Col<T>) -> Option<(usize, T)> {
-        let colmax = col_max_abs(&col);
+        let colmax = col_max_abs(col);
         if colmax == T::zero() {
             return None;
         }
@@ -823,7 +823,7 @@ impl<'a, T: Scalar> Engine<'a, T> {
             Col::from_fn(self.dim, |i| a[i] - bc[i])
         };
         let dc = self.factor.solve(&r);
-        let colmax = col_max_abs(&col);
+        let colmax = col_max_abs(col);
         // the correction spreads rounding noise over every entry: entries below
         // one rounding of the column are zeros (the sparse basis stores the
         // column as an eta, and a dense one would force refactorisations)

@@ -163,7 +163,7 @@ impl<T: Scalar> SparseFactor<T> {
                 }
                 let (rows, vals) = (l.row_idx_of_col_raw(j), l.val_of_col(j));
                 for (&i, &lij) in rows.iter().zip(vals).skip(1) {
-                    xs[i] = xs[i] - lij * xj;
+                    xs[i] -= lij * xj;
                 }
             }
             // upper U, its diagonal stored last in each column
@@ -177,7 +177,7 @@ impl<T: Scalar> SparseFactor<T> {
                 let xj = xs[j] * (T::one() / vals[last]);
                 xs[j] = xj;
                 for (&i, &uij) in rows[..last].iter().zip(&vals[..last]).rev() {
-                    xs[i] = xs[i] - uij * xj;
+                    xs[i] -= uij * xj;
                 }
             }
         }
@@ -407,7 +407,7 @@ impl<T: Scalar> SparseLu<T> {
                     }
                 } else {
                     for (xi, &v) in x.iter_mut().zip(&e.dense) {
-                        *xi = *xi - v * xr;
+                        *xi -= v * xr;
                     }
                 }
             }
