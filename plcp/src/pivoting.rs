@@ -64,6 +64,8 @@ pub(crate) struct Engine<'a, T: Scalar> {
     /// Right-hand side and parameter direction of the system being traced.
     pub q: Col<T>,
     pub d: Col<T>,
+    /// `(max_i |q_i|, max_i |d_i|)` ([`Self::xscale`]).
+    data_max: (T, T),
     pub basis: Vec<Var>,
     pos: Vec<Option<usize>>,
     factor: Box<dyn BasisFactor<T>>,
@@ -99,12 +101,41 @@ pub(crate) struct Engine<'a, T: Scalar> {
     residual_owed: bool,
 }
 
+/// A residual `r` accumulated in the wide type and rounded once, `B x` as
+/// `rhs - r`, and the largest term `max_j abs(B_ij x_j)` of each row.
+type WideResidual<T> = (Col<T>, Col<T>, Col<T>);
+
 /// Mixed-precision refinement of basic values stops once the correction is
 /// within this many roundings (`eps`) of the largest basic value.
 const WIDE_REFINE_EPS: f64 = 4.0;
 
 /// At most this many mixed-precision refinement steps per breakpoint.
 const WIDE_REFINE_STEPS: usize = 3;
+
+/// `max_i |v_i|` (zero for an empty slice) in four independent chains: a
+/// single chain of compares waits on each one, and the engine takes this
+/// maximum of vectors of length `p + n` several times per pivot.
+fn max_abs<T: Scalar>(v: &[T]) -> T {
+    let mut m = [T::zero(); 4];
+    let mut chunks = v.chunks_exact(4);
+    for c in &mut chunks {
+        for k in 0..4 {
+            m[k] = m[k].max(c[k].abs());
+        }
+    }
+    for &x in chunks.remainder() {
+        m[0] = m[0].max(x.abs());
+    }
+    m[0].max(m[1]).max(m[2].max(m[3]))
+}
+
+/// [`max_abs`] of a column.
+fn col_max_abs<T: Scalar>(c: &Col<T>) -> T {
+    match c.as_ref().try_as_col_major() {
+        Some(c) => max_abs(c.as_slice()),
+        None => c.iter().fold(T::zero(), |a, v| a.max(v.abs())),
+    }
+}
 
 fn is_comp(v: Var) -> bool {
     matches!(v, Var::W(_) | Var::Z(_))
@@ -134,6 +165,7 @@ impl<'a, T: Scalar> Engine<'a, T> {
     ) -> Result<Self, String> {
         let dim = m.nrows();
         let n = dim - p;
+        let data_max = Self::data_max(&q, &d);
         let mut e = Self {
             m,
             p,
@@ -141,6 +173,7 @@ impl<'a, T: Scalar> Engine<'a, T> {
             dim,
             q,
             d,
+            data_max,
             basis: basis.clone(),
             pos: vec![None; 3 * n + 2 * p + 1],
             factor: match settings.basis {
@@ -266,15 +299,25 @@ impl<'a, T: Scalar> Engine<'a, T> {
         }
     }
 
+    /// The scale of the basic values: `max(1, |q_i|, |L d_i|, |x_i|)` over
+    /// every row (`x` without `L`'s own position). `max_i |L d_i|` is
+    /// `|L| max_i |d_i|` exactly (rounding is monotone), so `q` and `d`
+    /// contribute their cached maxima and the pass is over `x` alone.
     fn xscale(&self) -> T {
-        let mut s = T::one();
-        for i in 0..self.dim {
-            s = s.max(self.q[i].abs()).max((self.lambda * self.d[i]).abs());
-            if !matches!(self.basis[i], Var::Lambda) {
-                s = s.max(self.x[i].abs());
-            }
+        let s = T::one()
+            .max(self.data_max.0)
+            .max(self.lambda.abs() * self.data_max.1);
+        let x = self.x.as_ref().try_as_col_major().expect("contiguous");
+        let x = x.as_slice();
+        match self.row_of(Var::Lambda) {
+            Some(l) => s.max(max_abs(&x[..l])).max(max_abs(&x[l + 1..])),
+            None => s.max(max_abs(x)),
         }
-        s
+    }
+
+    /// `(max_i |q_i|, max_i |d_i|)`, cached for [`Self::xscale`].
+    fn data_max(q: &Col<T>, d: &Col<T>) -> (T, T) {
+        (col_max_abs(q), col_max_abs(d))
     }
 
     /// Values of `(z, w, u)` now, with `driver` at `theta`.
@@ -365,7 +408,7 @@ impl<'a, T: Scalar> Engine<'a, T> {
 
     /// The minimum-ratio test with the lexicographic rule. Returns the row and the step.
     fn ratio_test(&self, col: &Col<T>) -> Option<(usize, T)> {
-        let colmax = (0..self.dim).fold(T::zero(), |a, i| a.max(col[i].abs()));
+        let colmax = col_max_abs(col);
         if colmax == T::zero() {
             return None;
         }
@@ -508,7 +551,7 @@ impl<'a, T: Scalar> Engine<'a, T> {
                 continue;
             }
             let col = self.column(Var::U(j));
-            let colmax = (0..self.dim).fold(T::zero(), |a, i| a.max(col[i].abs()));
+            let colmax = col_max_abs(&col);
             if col[l].abs() > self.noise * colmax
                 && best.as_ref().is_none_or(|(_, c)| col[l].abs() > c[l].abs())
             {
@@ -546,16 +589,6 @@ impl<'a, T: Scalar> Engine<'a, T> {
         end
     }
 
-    /// The right-hand side of the basic equations: `q + L d` when `L` is
-    /// nonbasic, `q` when it is basic (its column is in `B`).
-    fn basic_rhs(&self, i: usize) -> T {
-        if self.row_of(Var::Lambda).is_none() {
-            self.q[i] + self.lambda * self.d[i]
-        } else {
-            self.q[i]
-        }
-    }
-
     /// Iterative refinement of the basic values at a breakpoint, on evidence.
     ///
     /// While the basis condition estimate is small (`cond * eps <=
@@ -571,7 +604,7 @@ impl<'a, T: Scalar> Engine<'a, T> {
     /// residuals after refinement.
     fn refine_values(&mut self, mut bx: Col<T>) -> Residual {
         if self.refine_wide {
-            return self.refine_values_wide();
+            return self.refine_values_wide(None);
         }
         let mut res = self.residual_of(&bx);
         let tol = self.settings.refine_tol_eps * T::eps().to_f64();
@@ -580,7 +613,8 @@ impl<'a, T: Scalar> Engine<'a, T> {
             if res.equation.is_nan() || res.equation <= tol {
                 break;
             }
-            let r = Col::from_fn(self.dim, |i| self.basic_rhs(i) - bx[i]);
+            let rhs = self.rhs();
+            let r = Col::from_fn(self.dim, |i| rhs[i] - bx[i]);
             let dx = self.factor.solve(&r);
             let mut xn = self.x.clone();
             for k in 0..self.dim {
@@ -614,11 +648,21 @@ impl<'a, T: Scalar> Engine<'a, T> {
     /// residuals in the working precision stall at `cond * eps`: a degenerate
     /// basic variable (zero in exact arithmetic) then comes out at `eps`
     /// rather than at `cond * eps`.
-    fn refine_values_wide(&mut self) -> Residual {
+    ///
+    /// `first`: the wide residual of the current values if already computed
+    /// ([`Self::wide_residual_pair`]).
+    fn refine_values_wide(&mut self, first: Option<Col<T>>) -> Residual {
         let l = self.row_of(Var::Lambda);
-        let (mut r, mut bx, mut big) = self.wide_residual(&self.x, None);
+        // B x and the row scales of the current values, once measured
+        let (mut r, mut measured) = match first {
+            Some(r) => (r, None),
+            None => {
+                let (r, bx, big) = self.wide_residual(&self.x, None);
+                (r, Some((bx, big)))
+            }
+        };
         let mut last = f64::INFINITY;
-        for _ in 0..WIDE_REFINE_STEPS {
+        for step in 0..WIDE_REFINE_STEPS {
             let dx = self.factor.solve(&r);
             self.refinements += 1;
             let (mut dnorm, mut xnorm) = (0.0f64, 0.0f64);
@@ -637,14 +681,52 @@ impl<'a, T: Scalar> Engine<'a, T> {
                 }
             }
             last = dnorm;
-            (r, bx, big) = self.wide_residual(&self.x, None);
-            if dnorm <= WIDE_REFINE_EPS * T::eps().to_f64() * xnorm {
+            if dnorm <= WIDE_REFINE_EPS * T::eps().to_f64() * xnorm || step + 1 == WIDE_REFINE_STEPS
+            {
+                // no further step: the residual is only reported, and the
+                // working precision measures it as it measures points
+                // (`crate::residual`: within a few roundings of the row's
+                // largest term, the scale it is reported against)
+                measured = Some(self.plain_residual(&self.x));
                 break;
             }
+            let (rn, bx, big) = self.wide_residual(&self.x, None);
+            r = rn;
+            measured = Some((bx, big));
         }
+        let (bx, big) = measured.unwrap_or_else(|| self.plain_residual(&self.x));
         // relative to the terms of each row as well (a row whose terms cancel
         // to a small B x keeps the rounding of its largest term)
         self.residual_of_scaled(&bx, &self.x, Some(&big))
+    }
+
+    /// `B x` in the working precision and `max_j abs(B_ij x_j)` per row, in
+    /// one pass over the basic columns.
+    fn plain_residual(&self, x: &Col<T>) -> (Col<T>, Col<T>) {
+        let dim = self.dim;
+        let mut bx: Col<T> = Col::zeros(dim);
+        let mut big: Col<T> = Col::zeros(dim);
+        let (m, p) = (self.m, self.p);
+        // the column of a matrix variable is -M[:, j] (of L: -d)
+        for (k, b) in self.basis.iter().enumerate() {
+            let xk = x[k];
+            if xk == T::zero() {
+                continue;
+            }
+            let xa = xk.abs();
+            let mut add = |i: usize, a: T| {
+                bx[i] -= a * xk;
+                big[i] = big[i].max(a.abs() * xa);
+            };
+            match *b {
+                Var::U(j) => m.for_col(j, add),
+                Var::Z(j) => m.for_col(p + j, add),
+                Var::Lambda => (0..dim).for_each(|i| add(i, self.d[i])),
+                Var::W(i) => add(p + i, -T::one()),
+                Var::Artificial(i) => add(i, -T::one()),
+            }
+        }
+        (bx, big)
     }
 
     /// `r = rhs - B x` accumulated in [`Scalar::Wide`] and rounded once,
@@ -653,10 +735,10 @@ impl<'a, T: Scalar> Engine<'a, T> {
     /// cancellation in row `i`: the Oettli-Prager backward error's). `rhs` is
     /// the basic right-hand side (`v = None`) or the column `a_v` of the
     /// entering variable `v` (the residual of `x = B^{-1} a_v`).
-    fn wide_residual(&self, x: &Col<T>, v: Option<Var>) -> (Col<T>, Col<T>, Col<T>) {
+    fn wide_residual(&self, x: &Col<T>, v: Option<Var>) -> WideResidual<T> {
         let rhs: Col<T> = match v {
             Some(v) => var_column(self.m, &self.d, self.p, v),
-            None => Col::from_fn(self.dim, |i| self.basic_rhs(i)),
+            None => self.rhs(),
         };
         let mut acc: Vec<T::Wide> = (0..self.dim).map(|i| rhs[i].widen()).collect();
         let mut big: Col<T> = Col::zeros(self.dim);
@@ -685,14 +767,56 @@ impl<'a, T: Scalar> Engine<'a, T> {
         (r, bx, big)
     }
 
+    /// The residuals of [`Self::wide_residual`] (`r` alone) of the basic
+    /// values `x` and of the entering column `col = B^{-1} a_v` (`a_v - B
+    /// col`) in one pass over the basic columns (each accumulator sees the
+    /// same operations in the same order as in its own pass: the results are
+    /// identical).
+    fn wide_residual_pair(&self, x: &Col<T>, v: Var, col: &Col<T>) -> (Col<T>, Col<T>) {
+        let dim = self.dim;
+        let rhs = self.rhs();
+        let mut acc: Vec<T::Wide> = (0..dim).map(|i| rhs[i].widen()).collect();
+        let a = var_column(self.m, &self.d, self.p, v);
+        let mut acc_c: Vec<T::Wide> = (0..dim).map(|i| a[i].widen()).collect();
+        let (m, p) = (self.m, self.p);
+        for (k, b) in self.basis.iter().enumerate() {
+            let (xk, ck) = (x[k], col[k]);
+            let (on_x, on_c) = (xk != T::zero(), ck != T::zero());
+            if !on_x && !on_c {
+                continue;
+            }
+            let mut add = |i: usize, a: T| {
+                if on_x {
+                    acc[i] = T::wide_mul_add(acc[i], a, xk);
+                }
+                if on_c {
+                    acc_c[i] = T::wide_mul_add(acc_c[i], a, ck);
+                }
+            };
+            match *b {
+                Var::U(j) => m.for_col(j, add),
+                Var::Z(j) => m.for_col(p + j, add),
+                Var::Lambda => (0..dim).for_each(|i| add(i, self.d[i])),
+                Var::W(i) => add(p + i, -T::one()),
+                Var::Artificial(i) => add(i, -T::one()),
+            }
+        }
+        let r = Col::from_fn(dim, |i| T::narrow(acc[i]));
+        let rc = Col::from_fn(dim, |i| T::narrow(acc_c[i]));
+        (r, rc)
+    }
+
     /// One refinement step of an entering column `col = B^{-1} a_v`, when the
     /// basis condition estimate says the factorisation loses digits
     /// (`cond * eps > refine_cond_eps`); its residual `a_v - B col` is
     /// accumulated in [`Scalar::Wide`] beyond
     /// [`crate::tolerance::WIDE_REFINE_COND_EPS`], in the working precision
     /// below.
-    fn refine_column(&mut self, v: Var, col: &mut Col<T>) {
-        let r = if self.refine_wide {
+    /// `residual`: the wide residual `a_v - B col` if already computed.
+    fn refine_column(&mut self, v: Var, col: &mut Col<T>, residual: Option<Col<T>>) {
+        let r = if let Some(r) = residual {
+            r
+        } else if self.refine_wide {
             self.wide_residual(col, Some(v)).0
         } else {
             // below the wide threshold the working precision's residual
@@ -702,7 +826,7 @@ impl<'a, T: Scalar> Engine<'a, T> {
             Col::from_fn(self.dim, |i| a[i] - bc[i])
         };
         let dc = self.factor.solve(&r);
-        let colmax = (0..self.dim).fold(T::zero(), |a, k| a.max(col[k].abs()));
+        let colmax = col_max_abs(col);
         // the correction spreads rounding noise over every entry: entries below
         // one rounding of the column are zeros (the sparse basis stores the
         // column as an eta, and a dense one would force refactorisations)
@@ -732,36 +856,53 @@ impl<'a, T: Scalar> Engine<'a, T> {
     /// scales the residuals of points).
     fn residual_of_scaled(&self, bx: &Col<T>, x: &Col<T>, big: Option<&Col<T>>) -> Residual {
         let mut eq = 0.0f64;
+        // rows with r <= bound * s cannot raise eq (bound a hair below eq,
+        // far beyond the rounding of r / s): the division only where one may
+        let mut bound = T::zero();
+        let l_nonbasic = self.row_of(Var::Lambda).is_none();
         for i in 0..self.dim {
             let ld = self.lambda * self.d[i];
-            let rhs = self.basic_rhs(i);
+            // the basic right-hand side (see Self::rhs)
+            let rhs = if l_nonbasic {
+                self.q[i] + ld
+            } else {
+                self.q[i]
+            };
             let r = (rhs - bx[i]).abs();
             let mut s = T::one().max(self.q[i].abs()).max(ld.abs()).max(bx[i].abs());
             if let Some(big) = big {
                 s = s.max(big[i]);
             }
-            eq = eq.max((r / s).to_f64());
+            if r > bound * s {
+                let v = (r / s).to_f64();
+                if v > eq {
+                    eq = v;
+                    bound = T::from_f64(v * (1.0 - 1e-9));
+                }
+            }
         }
+        // feasibility and complementarity of the basic z and w (nonbasic ones are zero)
         let (mut sz, mut sw) = (1.0f64, 1.0f64);
-        let mut zv = vec![0.0f64; self.n];
-        let mut wv = vec![0.0f64; self.n];
         for (r, v) in self.basis.iter().enumerate() {
             match *v {
-                Var::Z(i) => {
-                    zv[i] = x[r].to_f64();
-                    sz = sz.max(zv[i].abs());
-                }
-                Var::W(i) => {
-                    wv[i] = x[r].to_f64();
-                    sw = sw.max(wv[i].abs());
-                }
+                Var::Z(_) => sz = sz.max(x[r].to_f64().abs()),
+                Var::W(_) => sw = sw.max(x[r].to_f64().abs()),
                 _ => {}
             }
         }
         let (mut feas, mut comp) = (0.0f64, 0.0f64);
-        for i in 0..self.n {
-            feas = feas.max(-zv[i] / sz).max(-wv[i] / sw);
-            comp = comp.max((zv[i] * wv[i]).abs() / (sz * sw));
+        for (r, v) in self.basis.iter().enumerate() {
+            match *v {
+                Var::Z(i) => {
+                    let z = x[r].to_f64();
+                    feas = feas.max(-z / sz);
+                    if let Some(rw) = self.row_of(Var::W(i)) {
+                        comp = comp.max((z * x[rw].to_f64()).abs() / (sz * sw));
+                    }
+                }
+                Var::W(_) => feas = feas.max(-x[r].to_f64() / sw),
+                _ => {}
+            }
         }
         Residual {
             equation: eq,
@@ -789,21 +930,41 @@ impl<'a, T: Scalar> Engine<'a, T> {
             if refine_here {
                 self.factor.set_refine(true);
             }
+            // the entering column's wide residual, when a pass for the values computed it
+            let mut col_residual: Option<Col<T>> = None;
             let mut col = match rec.as_deref_mut() {
                 Some(rec) if self.residual_owed => {
-                    let a = var_column(self.m, &self.d, self.p, driver);
-                    let (col, bx) = self.factor.solve_and_apply(
-                        self.m,
-                        &self.d,
-                        self.p,
-                        &self.basis,
-                        &a,
-                        &self.x,
-                    );
-                    if refine_here {
-                        self.factor.set_refine(false);
-                    }
-                    let res = self.refine_values(bx);
+                    let (col, res) = if self.refine_wide {
+                        // the wide residuals recompute B x: no working-precision
+                        // product; the first residual of the values and the
+                        // entering column's share one pass over the basic columns
+                        let col = self.column(driver);
+                        if refine_here {
+                            self.factor.set_refine(false);
+                        }
+                        let first = if self.refine_inside {
+                            None
+                        } else {
+                            let (values, column) = self.wide_residual_pair(&self.x, driver, &col);
+                            col_residual = Some(column);
+                            Some(values)
+                        };
+                        (col, self.refine_values_wide(first))
+                    } else {
+                        let a = var_column(self.m, &self.d, self.p, driver);
+                        let (col, bx) = self.factor.solve_and_apply(
+                            self.m,
+                            &self.d,
+                            self.p,
+                            &self.basis,
+                            &a,
+                            &self.x,
+                        );
+                        if refine_here {
+                            self.factor.set_refine(false);
+                        }
+                        (col, self.refine_values(bx))
+                    };
                     if let Some(b) = rec.breakpoints.last_mut() {
                         b.residual = res;
                     }
@@ -839,10 +1000,10 @@ impl<'a, T: Scalar> Engine<'a, T> {
                     // its refinement idle, see tolerance::REFINE_IDLE_EPS)
                     self.refinements += usize::from(self.factor.last_solve_refined());
                 } else {
-                    self.refine_column(driver, &mut col);
+                    self.refine_column(driver, &mut col, col_residual.take());
                 }
             }
-            let colmax = (0..self.dim).fold(T::zero(), |a, i| a.max(col[i].abs()));
+            let colmax = col_max_abs(&col);
             let rate = match driver {
                 Var::Lambda => T::one(),
                 _ => match self.row_of(Var::Lambda) {
@@ -1036,7 +1197,7 @@ impl<'a, T: Scalar> Engine<'a, T> {
             }
             if let Some((v, _)) = best {
                 let y = self.column(v);
-                let ymax = (0..self.dim).fold(T::zero(), |a, k| a.max(y[k].abs()));
+                let ymax = col_max_abs(&y);
                 if y[l].abs() > self.noise * ymax {
                     // L leaves at its current value; v enters at zero
                     self.degenerate_pivots += 1;
@@ -1085,7 +1246,7 @@ impl<'a, T: Scalar> Engine<'a, T> {
                         continue;
                     }
                     let ytrue = self.column(Var::U(j));
-                    let ymax = (0..self.dim).fold(T::zero(), |acc, k| acc.max(ytrue[k].abs()));
+                    let ymax = col_max_abs(&ytrue);
                     let ptol = self.noise * ymax;
                     if ytrue[rc].abs() <= ptol {
                         continue;
@@ -1148,7 +1309,7 @@ impl<'a, T: Scalar> Engine<'a, T> {
                 continue;
             }
             let y = self.column(Var::U(j));
-            let ymax = (0..self.dim).fold(T::zero(), |a, i| a.max(y[i].abs()));
+            let ymax = col_max_abs(&y);
             let mut best: Option<usize> = None;
             for r in 0..self.dim {
                 if matches!(self.basis[r], Var::W(_))
@@ -1199,6 +1360,7 @@ impl<'a, T: Scalar> Engine<'a, T> {
     /// Replaces the system's right-hand side and direction (phase change) and
     /// recomputes the basic values with `L` nonbasic at `lambda`.
     pub(crate) fn reset_system(&mut self, q: Col<T>, d: Col<T>, lambda: T) -> Result<(), String> {
+        self.data_max = Self::data_max(&q, &d);
         self.q = q;
         self.d = d;
         self.lambda = lambda;

@@ -27,12 +27,13 @@ use crate::path::Var;
 use crate::scalar::Scalar;
 use crate::tolerance::ROW_NOISE_EPS;
 use faer::dyn_stack::{MemBuffer, MemStack};
+use faer::perm::PermRef;
 use faer::sparse::linalg::lu::simplicial::{self, SimplicialLu};
 use faer::sparse::linalg::lu::{factorize_symbolic_lu, LuSymbolicParams};
 use faer::sparse::linalg::triangular_solve;
 use faer::sparse::linalg::SupernodalThreshold;
 use faer::sparse::{SparseColMatRef, SymbolicSparseColMatRef};
-use faer::{Col, Conj, Par};
+use faer::{Col, Conj, Mat, MatMut, Par};
 
 /// A sparse LU factorisation of a square matrix given in CSC form:
 /// `A[row_fwd, col_fwd] = L U` (faer's simplicial factors, unit lower `L`).
@@ -58,15 +59,32 @@ impl<T: Scalar> SparseFactor<T> {
     /// Factors the square matrix (`col_ptr`, `row_idx` sorted within columns,
     /// `val`); `None` if it is structurally singular or the factorisation fails.
     pub(crate) fn new(dim: usize, col_ptr: &[usize], row_idx: &[usize], val: &[T]) -> Option<Self> {
+        Self::with_order(dim, col_ptr, row_idx, val, None)
+    }
+
+    /// [`Self::new`] with the column order `(forward, inverse)` given (a
+    /// previous factorisation's, see [`SparseLu`]) rather than computed by COLAMD.
+    pub(crate) fn with_order(
+        dim: usize,
+        col_ptr: &[usize],
+        row_idx: &[usize],
+        val: &[T],
+        order: Option<(&[usize], &[usize])>,
+    ) -> Option<Self> {
         let sym = SymbolicSparseColMatRef::new_checked(dim, dim, col_ptr, None, row_idx);
-        let params = LuSymbolicParams {
-            supernodal_flop_ratio_threshold: SupernodalThreshold::FORCE_SIMPLICIAL,
-            ..Default::default()
+        let (col_fwd, col_inv) = match order {
+            Some((f, i)) => (f.to_vec(), i.to_vec()),
+            None => {
+                let params = LuSymbolicParams {
+                    supernodal_flop_ratio_threshold: SupernodalThreshold::FORCE_SIMPLICIAL,
+                    ..Default::default()
+                };
+                // the symbolic phase gives the COLAMD column order
+                let symbolic = factorize_symbolic_lu(sym, params).ok()?;
+                let (cf, ci) = symbolic.col_perm().arrays();
+                (cf.to_vec(), ci.to_vec())
+            }
         };
-        // the symbolic phase gives the COLAMD column order
-        let symbolic = factorize_symbolic_lu(sym, params).ok()?;
-        let (cf, ci) = symbolic.col_perm().arrays();
-        let (col_fwd, col_inv) = (cf.to_vec(), ci.to_vec());
         let mut lu = SimplicialLu::new();
         let mut row_fwd = vec![0usize; dim];
         let mut row_inv = vec![0usize; dim];
@@ -78,7 +96,7 @@ impl<T: Scalar> SparseFactor<T> {
             &mut row_inv,
             &mut lu,
             a,
-            symbolic.col_perm(),
+            PermRef::new_checked(&col_fwd, &col_inv, dim),
             MemStack::new(&mut mem),
         )
         .ok()?;
@@ -102,28 +120,67 @@ impl<T: Scalar> SparseFactor<T> {
         })
     }
 
+    /// Stored entries of the factors `L` and `U`.
+    fn factor_nnz(&self) -> usize {
+        self.lu.l_factor_unsorted().compute_nnz() + self.lu.u_factor_unsorted().compute_nnz()
+    }
+
     /// `x[i] <- x[perm[i]]`.
     fn permute(x: &mut Col<T>, perm: &[usize], tmp: &mut Vec<T>) {
+        let x = x
+            .as_mut()
+            .try_as_col_major_mut()
+            .expect("a column is contiguous")
+            .as_slice_mut();
         tmp.clear();
         tmp.extend(perm.iter().map(|&p| x[p]));
-        for (i, v) in tmp.iter().enumerate() {
-            x[i] = *v;
-        }
+        x.copy_from_slice(tmp);
     }
 
     /// `x <- A^{-1} x`.
+    ///
+    /// The triangular solves are column sweeps that skip the columns whose
+    /// multiplier is zero: the right-hand sides of the pivoting (a column of
+    /// `M` or a unit vector, a residual) start sparse, and `L^{-1} a` stays
+    /// sparse over much of the sweep. Otherwise the operations of faer's
+    /// single-column solves, in their order: the same results.
     pub(crate) fn solve_in_place(&self, x: &mut Col<T>) {
         debug_assert_eq!(x.nrows(), self.dim);
         let mut tmp = Vec::with_capacity(self.dim);
         Self::permute(x, &self.row_fwd, &mut tmp);
         let (l, u) = (self.lu.l_factor_unsorted(), self.lu.u_factor_unsorted());
-        triangular_solve::solve_unit_lower_triangular_in_place(
-            l,
-            Conj::No,
-            x.as_mat_mut(),
-            Par::Seq,
-        );
-        triangular_solve::solve_upper_triangular_in_place(u, Conj::No, x.as_mat_mut(), Par::Seq);
+        {
+            let xs = x
+                .as_mut()
+                .try_as_col_major_mut()
+                .expect("a column is contiguous")
+                .as_slice_mut();
+            // unit lower L, its diagonal stored first in each column
+            for j in 0..self.dim {
+                let xj = xs[j];
+                if xj == T::zero() {
+                    continue;
+                }
+                let (rows, vals) = (l.row_idx_of_col_raw(j), l.val_of_col(j));
+                for (&i, &lij) in rows.iter().zip(vals).skip(1) {
+                    xs[i] -= lij * xj;
+                }
+            }
+            // upper U, its diagonal stored last in each column
+            for j in (0..self.dim).rev() {
+                if xs[j] == T::zero() {
+                    continue;
+                }
+                let (rows, vals) = (u.row_idx_of_col_raw(j), u.val_of_col(j));
+                let last = vals.len() - 1;
+                debug_assert_eq!(rows[last], j);
+                let xj = xs[j] * (T::one() / vals[last]);
+                xs[j] = xj;
+                for (&i, &uij) in rows[..last].iter().zip(&vals[..last]).rev() {
+                    xs[i] -= uij * xj;
+                }
+            }
+        }
         Self::permute(x, &self.col_inv, &mut tmp);
     }
 
@@ -145,6 +202,37 @@ impl<T: Scalar> SparseFactor<T> {
             Par::Seq,
         );
         Self::permute(x, &self.row_inv, &mut tmp);
+    }
+
+    /// `X <- A^{-T} X`, all columns in one sweep over the factors.
+    pub(crate) fn solve_transpose_in_place_mat(&self, mut x: MatMut<'_, T>) {
+        debug_assert_eq!(x.nrows(), self.dim);
+        let mut tmp = Vec::with_capacity(self.dim);
+        let permute = |x: &mut MatMut<'_, T>, perm: &[usize], tmp: &mut Vec<T>| {
+            for c in 0..x.ncols() {
+                let mut col = x.as_mut().col_mut(c);
+                tmp.clear();
+                tmp.extend(perm.iter().map(|&p| col[p]));
+                for (i, v) in tmp.iter().enumerate() {
+                    col[i] = *v;
+                }
+            }
+        };
+        permute(&mut x, &self.col_fwd, &mut tmp);
+        let (l, u) = (self.lu.l_factor_unsorted(), self.lu.u_factor_unsorted());
+        triangular_solve::solve_upper_triangular_transpose_in_place(
+            u,
+            Conj::No,
+            x.as_mut(),
+            Par::Seq,
+        );
+        triangular_solve::solve_unit_lower_triangular_transpose_in_place(
+            l,
+            Conj::No,
+            x.as_mut(),
+            Par::Seq,
+        );
+        permute(&mut x, &self.row_inv, &mut tmp);
     }
 
     /// The 1-norm condition number estimate `||A||_1 est(||A^{-1}||_1)`; not
@@ -226,12 +314,52 @@ pub(crate) fn hager_inverse_norm1<T: Scalar>(
 
 /// One pivot of the product form: the column at position `r` replaced, with
 /// `y = B^{-1} a` its nonzeros (`r` excluded) and the pivot `y_r`.
+///
+/// A column of the inverse of a long-form basis is mostly dense (three
+/// quarters of the 1000-element cantilever's): such an eta is stored dense
+/// (`y` with `y_r = 0`), and applying it is a contiguous pass rather than a
+/// scatter. Either form gives the same results: the entries a dense eta adds
+/// are zeros, whose products change no sum.
 struct Eta<T: Scalar> {
     r: usize,
     pivot: T,
+    /// The sparse form (empty when dense).
     idx: Vec<usize>,
     val: Vec<T>,
+    /// The dense form (empty when sparse).
+    dense: Vec<T>,
 }
+
+impl<T: Scalar> Eta<T> {
+    /// `y_j` (`j != r`).
+    fn entry(&self, j: usize) -> T {
+        if !self.dense.is_empty() {
+            return self.dense[j];
+        }
+        match self.idx.binary_search(&j) {
+            Ok(k) => self.val[k],
+            Err(_) => T::zero(),
+        }
+    }
+}
+
+/// An eta column with more than this fraction of nonzeros is stored dense.
+const DENSE_ETA: f64 = 0.25;
+
+/// A fill-reducing column order and the fill (`nnz(L) + nnz(U)`) of the
+/// factorisation it was computed for.
+struct ColumnOrder {
+    fwd: Vec<usize>,
+    inv: Vec<usize>,
+    fill: usize,
+}
+
+/// A refactorisation reuses the previous column order (COLAMD's symbolic
+/// phase costs several numeric factorisations of a basis of the long form)
+/// until the factors exceed this multiple of the fill COLAMD gave (the next
+/// one then orders afresh): a pivot replaces one column, and the order of the
+/// others stays good.
+const REORDER_FILL: f64 = 1.25;
 
 /// The sparse basis representation (see the module docs).
 pub(crate) struct SparseLu<T: Scalar> {
@@ -239,6 +367,9 @@ pub(crate) struct SparseLu<T: Scalar> {
     factor: Option<SparseFactor<T>>,
     etas: Vec<Eta<T>>,
     eta_nnz: usize,
+    /// The column order of the last factorisation, reused while the factors
+    /// it gives stay within [`REORDER_FILL`] of the fill right after COLAMD.
+    order: Option<ColumnOrder>,
     /// Workspace for the CSC form of `B`.
     col_ptr: Vec<usize>,
     row_idx: Vec<usize>,
@@ -252,6 +383,7 @@ impl<T: Scalar> SparseLu<T> {
             factor: None,
             etas: Vec::new(),
             eta_nnz: 0,
+            order: None,
             col_ptr: Vec::new(),
             row_idx: Vec::new(),
             val: Vec::new(),
@@ -259,25 +391,67 @@ impl<T: Scalar> SparseLu<T> {
     }
 
     fn apply_etas(&self, x: &mut Col<T>) {
+        let x = x
+            .as_mut()
+            .try_as_col_major_mut()
+            .expect("a column is contiguous")
+            .as_slice_mut();
         for e in &self.etas {
             let xr = x[e.r] / e.pivot;
             x[e.r] = xr;
             if xr != T::zero() {
-                for (&i, &v) in e.idx.iter().zip(&e.val) {
-                    let t = x[i] - v * xr;
-                    x[i] = t;
+                if e.dense.is_empty() {
+                    for (&i, &v) in e.idx.iter().zip(&e.val) {
+                        let t = x[i] - v * xr;
+                        x[i] = t;
+                    }
+                } else {
+                    for (xi, &v) in x.iter_mut().zip(&e.dense) {
+                        *xi -= v * xr;
+                    }
                 }
             }
         }
     }
 
     fn apply_etas_transpose(&self, c: &mut Col<T>) {
+        let c = c
+            .as_mut()
+            .try_as_col_major_mut()
+            .expect("a column is contiguous")
+            .as_slice_mut();
         for e in self.etas.iter().rev() {
             let mut s = c[e.r];
-            for (&i, &v) in e.idx.iter().zip(&e.val) {
-                s -= v * c[i];
+            if e.dense.is_empty() {
+                for (&i, &v) in e.idx.iter().zip(&e.val) {
+                    s -= v * c[i];
+                }
+            } else {
+                for (&ci, &v) in c.iter().zip(&e.dense) {
+                    s -= v * ci;
+                }
             }
             c[e.r] = s / e.pivot;
+        }
+    }
+
+    /// [`Self::apply_etas_transpose`] on a unit vector `e_k`: it stays zero
+    /// but at `k` and at the eta positions, so each eta costs a product per
+    /// nonzero (in ascending order: the same sums as the full pass).
+    fn apply_etas_transpose_unit(&self, k: usize, c: &mut [T]) {
+        let mut nz: Vec<usize> = vec![k];
+        c[k] = T::one();
+        for e in self.etas.iter().rev() {
+            let mut s = c[e.r];
+            for &j in &nz {
+                if j != e.r {
+                    s -= e.entry(j) * c[j];
+                }
+            }
+            c[e.r] = s / e.pivot;
+            if let Err(at) = nz.binary_search(&e.r) {
+                nz.insert(at, e.r);
+            }
         }
     }
 }
@@ -318,7 +492,33 @@ impl<T: Scalar> BasisFactor<T> for SparseLu<T> {
         self.etas.clear();
         self.eta_nnz = 0;
         self.factor = None;
-        let f = SparseFactor::new(dim, &self.col_ptr, &self.row_idx, &self.val)?;
+        let reused = self.order.as_ref().and_then(|o| {
+            SparseFactor::with_order(
+                dim,
+                &self.col_ptr,
+                &self.row_idx,
+                &self.val,
+                Some((&o.fwd, &o.inv)),
+            )
+        });
+        if let (Some(f), Some(o)) = (&reused, &self.order) {
+            // the order has aged: a fresh one at the next refactorisation
+            if f.factor_nnz() as f64 > REORDER_FILL * o.fill as f64 {
+                self.order = None;
+            }
+        }
+        let f = match reused {
+            Some(f) => f,
+            None => {
+                let f = SparseFactor::new(dim, &self.col_ptr, &self.row_idx, &self.val)?;
+                self.order = Some(ColumnOrder {
+                    fwd: f.col_fwd.clone(),
+                    inv: f.col_inv.clone(),
+                    fill: f.factor_nnz(),
+                });
+                f
+            }
+        };
         let cond = f.condition();
         // numerically singular: no digit of a solve would be right
         if !cond.is_finite() || cond * T::eps().to_f64() * (dim.max(1) as f64) >= 1.0 {
@@ -344,18 +544,30 @@ impl<T: Scalar> BasisFactor<T> for SparseLu<T> {
     }
 
     fn inverse_rows(&self, rows: &[usize]) -> Option<Vec<Col<T>>> {
-        // row r of B^{-1} is (B^{-T} e_r)'
+        // row r of B^{-1} is (B^{-T} e_r)': all rows in one sweep over the etas
+        // and the factors (each column sees the operations of its own solve)
+        let dim = self.dim;
+        let mut x = Mat::<T>::zeros(dim, rows.len());
+        for (c, &r) in rows.iter().enumerate() {
+            let col = x
+                .col_mut(c)
+                .try_as_col_major_mut()
+                .expect("a column is contiguous")
+                .as_slice_mut();
+            self.apply_etas_transpose_unit(r, col);
+        }
+        if let Some(f) = &self.factor {
+            f.solve_transpose_in_place_mat(x.as_mut());
+        }
         Some(
-            rows.iter()
-                .map(|&r| {
-                    let mut e = Col::zeros(self.dim);
-                    e[r] = T::one();
-                    let mut row = self.solve_transpose(&e);
+            (0..rows.len())
+                .map(|c| {
+                    let mut row = Col::from_fn(dim, |k| x[(k, c)]);
                     // entries at the rounding level of the row are zeros of the
                     // exact inverse (the lexicographic rule compares them exactly)
-                    let big = (0..self.dim).fold(T::zero(), |a, k| a.max(row[k].abs()));
+                    let big = (0..dim).fold(T::zero(), |a, k| a.max(row[k].abs()));
                     let tol = T::from_f64(ROW_NOISE_EPS) * T::eps() * big;
-                    for k in 0..self.dim {
+                    for k in 0..dim {
                         if row[k].abs() <= tol {
                             row[k] = T::zero();
                         }
@@ -400,8 +612,24 @@ impl<T: Scalar> BasisFactor<T> for SparseLu<T> {
                 val.push(y[i]);
             }
         }
-        self.eta_nnz += idx.len() + 1;
-        self.etas.push(Eta { r, pivot, idx, val });
+        let nnz = idx.len();
+        let dense = if nnz as f64 > DENSE_ETA * self.dim as f64 {
+            idx = Vec::new();
+            val = Vec::new();
+            let mut v: Vec<T> = (0..self.dim).map(|i| y[i]).collect();
+            v[r] = T::zero();
+            v
+        } else {
+            Vec::new()
+        };
+        self.eta_nnz += nnz + 1;
+        self.etas.push(Eta {
+            r,
+            pivot,
+            idx,
+            val,
+            dense,
+        });
         // applying the eta file now costs more than a fresh factor would: refactorise
         self.eta_nnz <= 4 * f.nnz + self.dim
     }
