@@ -96,8 +96,8 @@ pub fn matmul<T: Scalar>(a: MatRef<'_, T>, b: MatRef<'_, T>) -> Mat<T> {
 /// global parallelism ([`faer::get_global_parallelism`]; by default every
 /// core, `faer::set_global_parallelism(faer::Par::Seq)` keeps one); smaller
 /// ones stay on the calling thread, where waking the pool would cost more
-/// than it saves. A pass over `2^18` doubles (2 MB) takes about 0.1 ms.
-pub const PAR_MIN_ENTRIES: usize = 1 << 18;
+/// than it saves. A pass over `2^16` doubles (512 KB) takes about 30 us.
+pub const PAR_MIN_ENTRIES: usize = 1 << 16;
 
 /// The parallelism for a pass over `entries` matrix entries (see [`PAR_MIN_ENTRIES`]).
 pub fn par_for(entries: usize) -> faer::Par {
