@@ -19,8 +19,10 @@
 //!   the matrix columns on the uncovered rows. Only `S^{-1}` (order `k`, the
 //!   number of basic matrix columns) is kept and updated by bordering and
 //!   Sherman-Morrison formulas; `B^{-1} a = (S^{-1} a_R, a_I - C S^{-1} a_R)` costs
-//!   `O(k^2 + (p+n) k)`. For a PLCP whose active set stays small this is far
-//!   cheaper than the dense inverse. This is the default.
+//!   `O(k^2 + (p+n) k)`. A pivot's rank-one update of `S^{-1}` is applied by
+//!   the next solve in the same pass over `S^{-1}` (see `Pending`). For a PLCP
+//!   whose active set stays small this is far cheaper than the dense inverse.
+//!   This is the default.
 //! * [`SparseLu`]: a sparse LU factorisation of `B` (faer's simplicial LU with
 //!   a COLAMD column order and partial pivoting), refactorised on the period,
 //!   with product-form (eta) updates in between; for sparse problems
@@ -420,7 +422,8 @@ fn dot_slice<T: Scalar>(x: &[T], y: &[T]) -> T {
 ///
 /// Run through pulp's runtime dispatch: the crate is compiled for the baseline
 /// target, so these loops would otherwise vectorise at SSE2 width; inlined into
-/// pulp's target-feature functions they use the machine's AVX2 or AVX-512.
+/// pulp's target-feature functions they use the machine's AVX2 (FMA is not
+/// contracted: the same products and sums as the plain loops).
 /// Only the order of operations is fixed by the code, so the result is the
 /// same on every machine. One pass covers the columns `j0..j0 + sinv.ncols()`
 /// of `S^{-1}` (`sinv`: those columns, rows `0..k`).
@@ -1049,6 +1052,26 @@ impl<T: Scalar> BasisFactor<T> for BlockInverse<T> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The pause of an idle refinement: after `REFINE_IDLE_RUN` small
+    /// corrections, 8 solves skipped; a small probe doubles the pause (to 64
+    /// at most); a large correction ends it.
+    #[test]
+    fn idle_refinement_pauses_and_resumes() {
+        let mut s = Idle::default();
+        for _ in 0..REFINE_IDLE_RUN - 1 {
+            s = s.after(true);
+            assert_eq!(s.skip, 0);
+        }
+        s = s.after(true);
+        assert_eq!((s.pause, s.skip), (8, 8));
+        for want in [16, 32, 64, 64] {
+            s = s.after(true);
+            assert_eq!((s.pause, s.skip), (want, want));
+        }
+        s = s.after(false);
+        assert_eq!((s.run, s.pause, s.skip), (0, 0, 0));
+    }
 
     /// Random pivots through every kind of transition; the block inverse must
     /// agree with a freshly inverted dense basis after each.
