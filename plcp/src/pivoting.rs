@@ -66,6 +66,10 @@ pub(crate) struct Engine<'a, T: Scalar> {
     pub d: Col<T>,
     /// `(max_i |q_i|, max_i |d_i|)` ([`Self::xscale`]).
     data_max: (T, T),
+    /// The rows where `d` is nonzero: the residual passes visit only these
+    /// of the column of `L` (a product with a zero entry changes no sum; a
+    /// load direction is often a single entry, the basis thousands of rows).
+    d_rows: Vec<usize>,
     pub basis: Vec<Var>,
     pos: Vec<Option<usize>>,
     factor: Box<dyn BasisFactor<T>>,
@@ -166,6 +170,7 @@ impl<'a, T: Scalar> Engine<'a, T> {
         let dim = m.nrows();
         let n = dim - p;
         let data_max = Self::data_max(&q, &d);
+        let d_rows = Self::nonzero_rows(&d);
         let mut e = Self {
             m,
             p,
@@ -174,6 +179,7 @@ impl<'a, T: Scalar> Engine<'a, T> {
             q,
             d,
             data_max,
+            d_rows,
             basis: basis.clone(),
             pos: vec![None; 3 * n + 2 * p + 1],
             factor: match settings.basis {
@@ -313,6 +319,11 @@ impl<'a, T: Scalar> Engine<'a, T> {
             Some(l) => s.max(max_abs(&x[..l])).max(max_abs(&x[l + 1..])),
             None => s.max(max_abs(x)),
         }
+    }
+
+    /// The rows `i` with `v_i != 0`.
+    fn nonzero_rows(v: &Col<T>) -> Vec<usize> {
+        (0..v.nrows()).filter(|&i| v[i] != T::zero()).collect()
     }
 
     /// `(max_i |q_i|, max_i |d_i|)`, cached for [`Self::xscale`].
@@ -649,21 +660,24 @@ impl<'a, T: Scalar> Engine<'a, T> {
     /// basic variable (zero in exact arithmetic) then comes out at `eps`
     /// rather than at `cond * eps`.
     ///
-    /// `first`: the wide residual of the current values if already computed
-    /// ([`Self::wide_residual_pair`]).
-    fn refine_values_wide(&mut self, first: Option<Col<T>>) -> Residual {
+    /// `first`: the wide residual of the current values and its correction
+    /// `B^{-1} r` if already computed ([`Self::wide_residual_pair`]).
+    fn refine_values_wide(&mut self, first: Option<(Col<T>, Col<T>)>) -> Residual {
         let l = self.row_of(Var::Lambda);
         // B x and the row scales of the current values, once measured
-        let (mut r, mut measured) = match first {
-            Some(r) => (r, None),
+        let (mut r, mut measured, mut first_dx) = match first {
+            Some((r, dx)) => (r, None, Some(dx)),
             None => {
                 let (r, bx, big) = self.wide_residual(&self.x, None);
-                (r, Some((bx, big)))
+                (r, Some((bx, big)), None)
             }
         };
         let mut last = f64::INFINITY;
         for step in 0..WIDE_REFINE_STEPS {
-            let dx = self.factor.solve(&r);
+            let dx = match first_dx.take() {
+                Some(dx) => dx,
+                None => self.factor.solve(&r),
+            };
             self.refinements += 1;
             let (mut dnorm, mut xnorm) = (0.0f64, 0.0f64);
             for k in 0..self.dim {
@@ -721,7 +735,7 @@ impl<'a, T: Scalar> Engine<'a, T> {
             match *b {
                 Var::U(j) => m.for_col(j, add),
                 Var::Z(j) => m.for_col(p + j, add),
-                Var::Lambda => (0..dim).for_each(|i| add(i, self.d[i])),
+                Var::Lambda => self.d_rows.iter().for_each(|&i| add(i, self.d[i])),
                 Var::W(i) => add(p + i, -T::one()),
                 Var::Artificial(i) => add(i, -T::one()),
             }
@@ -757,7 +771,7 @@ impl<'a, T: Scalar> Engine<'a, T> {
             match *b {
                 Var::U(j) => m.for_col(j, add),
                 Var::Z(j) => m.for_col(p + j, add),
-                Var::Lambda => (0..self.dim).for_each(|i| add(i, self.d[i])),
+                Var::Lambda => self.d_rows.iter().for_each(|&i| add(i, self.d[i])),
                 Var::W(i) => add(p + i, -T::one()),
                 Var::Artificial(i) => add(i, -T::one()),
             }
@@ -796,7 +810,7 @@ impl<'a, T: Scalar> Engine<'a, T> {
             match *b {
                 Var::U(j) => m.for_col(j, add),
                 Var::Z(j) => m.for_col(p + j, add),
-                Var::Lambda => (0..dim).for_each(|i| add(i, self.d[i])),
+                Var::Lambda => self.d_rows.iter().for_each(|&i| add(i, self.d[i])),
                 Var::W(i) => add(p + i, -T::one()),
                 Var::Artificial(i) => add(i, -T::one()),
             }
@@ -812,11 +826,14 @@ impl<'a, T: Scalar> Engine<'a, T> {
     /// accumulated in [`Scalar::Wide`] beyond
     /// [`crate::tolerance::WIDE_REFINE_COND_EPS`], in the working precision
     /// below.
-    /// `residual`: the wide residual `a_v - B col` if already computed.
-    fn refine_column(&mut self, v: Var, col: &mut Col<T>, residual: Option<Col<T>>) {
-        let r = if let Some(r) = residual {
-            r
-        } else if self.refine_wide {
+    /// `correction`: `B^{-1}` of the wide residual `a_v - B col` if already
+    /// computed.
+    fn refine_column(&mut self, v: Var, col: &mut Col<T>, correction: Option<Col<T>>) {
+        if let Some(dc) = correction {
+            self.apply_column_correction(col, &dc);
+            return;
+        }
+        let r = if self.refine_wide {
             self.wide_residual(col, Some(v)).0
         } else {
             // below the wide threshold the working precision's residual
@@ -826,6 +843,11 @@ impl<'a, T: Scalar> Engine<'a, T> {
             Col::from_fn(self.dim, |i| a[i] - bc[i])
         };
         let dc = self.factor.solve(&r);
+        self.apply_column_correction(col, &dc);
+    }
+
+    /// `col += dc`, entries at the rounding level of `col` set to zero.
+    fn apply_column_correction(&mut self, col: &mut Col<T>, dc: &Col<T>) {
         let colmax = col_max_abs(col);
         // the correction spreads rounding noise over every entry: entries below
         // one rounding of the column are zeros (the sparse basis stores the
@@ -931,7 +953,8 @@ impl<'a, T: Scalar> Engine<'a, T> {
                 self.factor.set_refine(true);
             }
             // the entering column's wide residual, when a pass for the values computed it
-            let mut col_residual: Option<Col<T>> = None;
+            // and its correction (solved with the values' first correction)
+            let mut col_correction: Option<Col<T>> = None;
             let mut col = match rec.as_deref_mut() {
                 Some(rec) if self.residual_owed => {
                     let (col, res) = if self.refine_wide {
@@ -945,9 +968,12 @@ impl<'a, T: Scalar> Engine<'a, T> {
                         let first = if self.refine_inside {
                             None
                         } else {
+                            // the two corrections are independent: one sweep
+                            // over the factors for both
                             let (values, column) = self.wide_residual_pair(&self.x, driver, &col);
-                            col_residual = Some(column);
-                            Some(values)
+                            let (dx, dc) = self.factor.solve2(&values, &column);
+                            col_correction = Some(dc);
+                            Some((values, dx))
                         };
                         (col, self.refine_values_wide(first))
                     } else {
@@ -1000,7 +1026,7 @@ impl<'a, T: Scalar> Engine<'a, T> {
                     // its refinement idle, see tolerance::REFINE_IDLE_EPS)
                     self.refinements += usize::from(self.factor.last_solve_refined());
                 } else {
-                    self.refine_column(driver, &mut col, col_residual.take());
+                    self.refine_column(driver, &mut col, col_correction.take());
                 }
             }
             let colmax = col_max_abs(&col);
@@ -1361,6 +1387,7 @@ impl<'a, T: Scalar> Engine<'a, T> {
     /// recomputes the basic values with `L` nonbasic at `lambda`.
     pub(crate) fn reset_system(&mut self, q: Col<T>, d: Col<T>, lambda: T) -> Result<(), String> {
         self.data_max = Self::data_max(&q, &d);
+        self.d_rows = Self::nonzero_rows(&d);
         self.q = q;
         self.d = d;
         self.lambda = lambda;

@@ -184,6 +184,71 @@ impl<T: Scalar> SparseFactor<T> {
         Self::permute(x, &self.col_inv, &mut tmp);
     }
 
+    /// `x <- A^{-1} x` and `y <- A^{-1} y` in one sweep over the factors:
+    /// each column sees the operations of its own [`Self::solve_in_place`]
+    /// (the same results), the factors' indices and values are read once.
+    pub(crate) fn solve2_in_place(&self, x: &mut [T], y: &mut [T], tmp: &mut Vec<T>) {
+        debug_assert!(x.len() == self.dim && y.len() == self.dim);
+        let permute = |v: &mut [T], perm: &[usize], tmp: &mut Vec<T>| {
+            tmp.clear();
+            tmp.extend(perm.iter().map(|&p| v[p]));
+            v.copy_from_slice(tmp);
+        };
+        permute(x, &self.row_fwd, tmp);
+        permute(y, &self.row_fwd, tmp);
+        let (l, u) = (self.lu.l_factor_unsorted(), self.lu.u_factor_unsorted());
+        // unit lower L, its diagonal stored first in each column
+        for j in 0..self.dim {
+            let (xj, yj) = (x[j], y[j]);
+            let (onx, ony) = (xj != T::zero(), yj != T::zero());
+            if !onx && !ony {
+                continue;
+            }
+            let (rows, vals) = (l.row_idx_of_col_raw(j), l.val_of_col(j));
+            if onx && ony {
+                for (&i, &lij) in rows.iter().zip(vals).skip(1) {
+                    x[i] -= lij * xj;
+                    y[i] -= lij * yj;
+                }
+            } else {
+                let (v, vj) = if onx { (&mut *x, xj) } else { (&mut *y, yj) };
+                for (&i, &lij) in rows.iter().zip(vals).skip(1) {
+                    v[i] -= lij * vj;
+                }
+            }
+        }
+        // upper U, its diagonal stored last in each column
+        for j in (0..self.dim).rev() {
+            let (onx, ony) = (x[j] != T::zero(), y[j] != T::zero());
+            if !onx && !ony {
+                continue;
+            }
+            let (rows, vals) = (u.row_idx_of_col_raw(j), u.val_of_col(j));
+            let last = vals.len() - 1;
+            debug_assert_eq!(rows[last], j);
+            let inv = T::one() / vals[last];
+            let (rows, vals) = (&rows[..last], &vals[..last]);
+            if onx && ony {
+                let (xj, yj) = (x[j] * inv, y[j] * inv);
+                x[j] = xj;
+                y[j] = yj;
+                for (&i, &uij) in rows.iter().zip(vals).rev() {
+                    x[i] -= uij * xj;
+                    y[i] -= uij * yj;
+                }
+            } else {
+                let v = if onx { &mut *x } else { &mut *y };
+                let vj = v[j] * inv;
+                v[j] = vj;
+                for (&i, &uij) in rows.iter().zip(vals).rev() {
+                    v[i] -= uij * vj;
+                }
+            }
+        }
+        permute(x, &self.col_inv, tmp);
+        permute(y, &self.col_inv, tmp);
+    }
+
     /// `x <- A^{-T} x`.
     pub(crate) fn solve_transpose_in_place(&self, x: &mut Col<T>) {
         let mut tmp = Vec::with_capacity(self.dim);
@@ -245,6 +310,14 @@ impl<T: Scalar> SparseFactor<T> {
                 |x| self.solve_transpose_in_place(x),
             )
     }
+}
+
+/// The entries of a (contiguous) column.
+fn col_slice<T: Scalar>(c: &mut Col<T>) -> &mut [T] {
+    c.as_mut()
+        .try_as_col_major_mut()
+        .expect("a column is contiguous")
+        .as_slice_mut()
 }
 
 /// Hager's estimate of `||A^{-1}||_1` from solves with `A` and `A'` (Higham,
@@ -414,6 +487,42 @@ impl<T: Scalar> SparseLu<T> {
         }
     }
 
+    /// [`Self::apply_etas`] on two vectors in one pass over the eta file
+    /// (each sees the operations of its own pass).
+    fn apply_etas2(&self, x: &mut [T], y: &mut [T]) {
+        for e in &self.etas {
+            let xr = x[e.r] / e.pivot;
+            x[e.r] = xr;
+            let yr = y[e.r] / e.pivot;
+            y[e.r] = yr;
+            let (onx, ony) = (xr != T::zero(), yr != T::zero());
+            if e.dense.is_empty() {
+                if onx {
+                    for (&i, &v) in e.idx.iter().zip(&e.val) {
+                        let t = x[i] - v * xr;
+                        x[i] = t;
+                    }
+                }
+                if ony {
+                    for (&i, &v) in e.idx.iter().zip(&e.val) {
+                        let t = y[i] - v * yr;
+                        y[i] = t;
+                    }
+                }
+            } else if onx && ony {
+                for ((xi, yi), &v) in x.iter_mut().zip(y.iter_mut()).zip(&e.dense) {
+                    *xi -= v * xr;
+                    *yi -= v * yr;
+                }
+            } else if onx || ony {
+                let (z, zr) = if onx { (&mut *x, xr) } else { (&mut *y, yr) };
+                for (zi, &v) in z.iter_mut().zip(&e.dense) {
+                    *zi -= v * zr;
+                }
+            }
+        }
+    }
+
     fn apply_etas_transpose(&self, c: &mut Col<T>) {
         let c = c
             .as_mut()
@@ -535,6 +644,18 @@ impl<T: Scalar> BasisFactor<T> for SparseLu<T> {
         }
         self.apply_etas(&mut x);
         x
+    }
+
+    fn solve2(&self, a: &Col<T>, b: &Col<T>) -> (Col<T>, Col<T>) {
+        let (mut x, mut y) = (a.clone(), b.clone());
+        let xs = col_slice(&mut x);
+        let ys = col_slice(&mut y);
+        if let Some(f) = &self.factor {
+            let mut tmp = Vec::with_capacity(self.dim);
+            f.solve2_in_place(xs, ys, &mut tmp);
+        }
+        self.apply_etas2(xs, ys);
+        (x, y)
     }
 
     fn unit(&self, k: usize) -> Col<T> {
