@@ -19,6 +19,7 @@ use crate::matrix::MatrixRef;
 use crate::path::{Breakpoint, Point, Residual, Segment, Var};
 use crate::scalar::Scalar;
 use crate::settings::Settings;
+use core::cell::RefCell;
 use faer::Col;
 
 /// How a trace ended.
@@ -103,6 +104,10 @@ pub(crate) struct Engine<'a, T: Scalar> {
     /// The last recorded breakpoint still owes its residual (measured with the
     /// next entering column, in the same pass over the basic columns).
     residual_owed: bool,
+    /// The accumulators of [`Self::wide_residual_pair`], kept between pivots
+    /// (two vectors of `p + n` wide values each time were a tenth of the
+    /// trace in page faults and zeroing).
+    wide_acc: RefCell<(Vec<T::Wide>, Vec<T::Wide>)>,
 }
 
 /// A residual `r` accumulated in the wide type and rounded once, `B x` as
@@ -205,6 +210,7 @@ impl<'a, T: Scalar> Engine<'a, T> {
             trace_pivots: std::env::var_os("PLCP_TRACE").is_some(),
             tie_tol: T::from_f64(settings.tie_tol_eps) * T::eps(),
             residual_owed: false,
+            wide_acc: RefCell::new((Vec::new(), Vec::new())),
         };
         for (r, v) in basis.iter().enumerate() {
             let k = e.var_index(*v);
@@ -660,23 +666,23 @@ impl<'a, T: Scalar> Engine<'a, T> {
     /// basic variable (zero in exact arithmetic) then comes out at `eps`
     /// rather than at `cond * eps`.
     ///
-    /// `first`: the wide residual of the current values and its correction
-    /// `B^{-1} r` if already computed ([`Self::wide_residual_pair`]).
-    fn refine_values_wide(&mut self, first: Option<(Col<T>, Col<T>)>) -> Residual {
+    /// `first`: the first correction `B^{-1} r` of the current values if
+    /// already computed (from [`Self::wide_residual_pair`]).
+    fn refine_values_wide(&mut self, first: Option<Col<T>>) -> Residual {
         let l = self.row_of(Var::Lambda);
         // B x and the row scales of the current values, once measured
         let (mut r, mut measured, mut first_dx) = match first {
-            Some((r, dx)) => (r, None, Some(dx)),
+            Some(dx) => (None, None, Some(dx)),
             None => {
                 let (r, bx, big) = self.wide_residual(&self.x, None);
-                (r, Some((bx, big)), None)
+                (Some(r), Some((bx, big)), None)
             }
         };
         let mut last = f64::INFINITY;
         for step in 0..WIDE_REFINE_STEPS {
             let dx = match first_dx.take() {
                 Some(dx) => dx,
-                None => self.factor.solve(&r),
+                None => self.factor.solve(r.as_ref().expect("a residual")),
             };
             self.refinements += 1;
             let (mut dnorm, mut xnorm) = (0.0f64, 0.0f64);
@@ -705,7 +711,7 @@ impl<'a, T: Scalar> Engine<'a, T> {
                 break;
             }
             let (rn, bx, big) = self.wide_residual(&self.x, None);
-            r = rn;
+            r = Some(rn);
             measured = Some((bx, big));
         }
         let (bx, big) = measured.unwrap_or_else(|| self.plain_residual(&self.x));
@@ -788,11 +794,29 @@ impl<'a, T: Scalar> Engine<'a, T> {
     /// identical).
     fn wide_residual_pair(&self, x: &Col<T>, v: Var, col: &Col<T>) -> (Col<T>, Col<T>) {
         let dim = self.dim;
-        let rhs = self.rhs();
-        let mut acc: Vec<T::Wide> = (0..dim).map(|i| rhs[i].widen()).collect();
-        let a = var_column(self.m, &self.d, self.p, v);
-        let mut acc_c: Vec<T::Wide> = (0..dim).map(|i| a[i].widen()).collect();
         let (m, p) = (self.m, self.p);
+        let mut scratch = self.wide_acc.borrow_mut();
+        let (acc, acc_c) = &mut *scratch;
+        // the basic right-hand side (Self::rhs) and the column a_v (var_column)
+        acc.clear();
+        if self.row_of(Var::Lambda).is_some() {
+            acc.extend((0..dim).map(|i| self.q[i].widen()));
+        } else {
+            acc.extend((0..dim).map(|i| (self.q[i] + self.lambda * self.d[i]).widen()));
+        }
+        acc_c.clear();
+        acc_c.resize(dim, T::zero().widen());
+        match v {
+            Var::U(j) => m.for_col(j, |i, a| acc_c[i] = (-a).widen()),
+            Var::Z(j) => m.for_col(p + j, |i, a| acc_c[i] = (-a).widen()),
+            Var::W(i) => acc_c[p + i] = T::one().widen(),
+            Var::Artificial(k) => acc_c[k] = T::one().widen(),
+            Var::Lambda => {
+                for (i, c) in acc_c.iter_mut().enumerate() {
+                    *c = (-self.d[i]).widen();
+                }
+            }
+        }
         for (k, b) in self.basis.iter().enumerate() {
             let (xk, ck) = (x[k], col[k]);
             let (on_x, on_c) = (xk != T::zero(), ck != T::zero());
@@ -971,9 +995,9 @@ impl<'a, T: Scalar> Engine<'a, T> {
                             // the two corrections are independent: one sweep
                             // over the factors for both
                             let (values, column) = self.wide_residual_pair(&self.x, driver, &col);
-                            let (dx, dc) = self.factor.solve2(&values, &column);
+                            let (dx, dc) = self.factor.solve2(values, column);
                             col_correction = Some(dc);
-                            Some((values, dx))
+                            Some(dx)
                         };
                         (col, self.refine_values_wide(first))
                     } else {

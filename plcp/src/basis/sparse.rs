@@ -646,8 +646,7 @@ impl<T: Scalar> BasisFactor<T> for SparseLu<T> {
         x
     }
 
-    fn solve2(&self, a: &Col<T>, b: &Col<T>) -> (Col<T>, Col<T>) {
-        let (mut x, mut y) = (a.clone(), b.clone());
+    fn solve2(&self, mut x: Col<T>, mut y: Col<T>) -> (Col<T>, Col<T>) {
         let xs = col_slice(&mut x);
         let ys = col_slice(&mut y);
         if let Some(f) = &self.factor {
