@@ -146,6 +146,25 @@ fn col_max_abs<T: Scalar>(c: &Col<T>) -> T {
     }
 }
 
+/// [`MatrixRef::for_col`], always inlined (with the closure) into its caller.
+#[inline(always)]
+fn for_col_inline<T: Scalar>(m: MatrixRef<'_, T>, j: usize, mut f: impl FnMut(usize, T)) {
+    match m {
+        MatrixRef::Dense(m) => {
+            let c = m.col(j);
+            for i in 0..c.nrows() {
+                f(i, c[i]);
+            }
+        }
+        MatrixRef::Sparse(m) => {
+            let (rows, vals) = m.col(j);
+            for (&i, &v) in rows.iter().zip(vals) {
+                f(i, v);
+            }
+        }
+    }
+}
+
 fn is_comp(v: Var) -> bool {
     matches!(v, Var::W(_) | Var::Z(_))
 }
@@ -793,6 +812,33 @@ impl<'a, T: Scalar> Engine<'a, T> {
     /// same operations in the same order as in its own pass: the results are
     /// identical).
     fn wide_residual_pair(&self, x: &Col<T>, v: Var, col: &Col<T>) -> (Col<T>, Col<T>) {
+        #[cfg(target_arch = "x86_64")]
+        if T::FMA_KERNEL && crate::scalar::fma_detected() {
+            // SAFETY: the CPU has the fma feature
+            return unsafe { self.wide_residual_pair_fma(x, v, col) };
+        }
+        self.wide_residual_pair_with::<false>(x, v, col)
+    }
+
+    /// [`Self::wide_residual_pair`] compiled with fused multiply-add: the
+    /// error-free products by `fma` rather than Veltkamp's splitting (the
+    /// same numbers, see [`Scalar::wide_mul_add_fma`]).
+    ///
+    /// # Safety
+    /// The CPU must have the `fma` feature.
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "fma")]
+    unsafe fn wide_residual_pair_fma(&self, x: &Col<T>, v: Var, col: &Col<T>) -> (Col<T>, Col<T>) {
+        self.wide_residual_pair_with::<true>(x, v, col)
+    }
+
+    #[inline(always)]
+    fn wide_residual_pair_with<const FMA: bool>(
+        &self,
+        x: &Col<T>,
+        v: Var,
+        col: &Col<T>,
+    ) -> (Col<T>, Col<T>) {
         let dim = self.dim;
         let (m, p) = (self.m, self.p);
         let mut scratch = self.wide_acc.borrow_mut();
@@ -825,15 +871,25 @@ impl<'a, T: Scalar> Engine<'a, T> {
             }
             let mut add = |i: usize, a: T| {
                 if on_x {
-                    acc[i] = T::wide_mul_add(acc[i], a, xk);
+                    acc[i] = if FMA {
+                        T::wide_mul_add_fma(acc[i], a, xk)
+                    } else {
+                        T::wide_mul_add(acc[i], a, xk)
+                    };
                 }
                 if on_c {
-                    acc_c[i] = T::wide_mul_add(acc_c[i], a, ck);
+                    acc_c[i] = if FMA {
+                        T::wide_mul_add_fma(acc_c[i], a, ck)
+                    } else {
+                        T::wide_mul_add(acc_c[i], a, ck)
+                    };
                 }
             };
+            // (for_col_inline: a kernel compiled with fma must inline the
+            // closure, or its products are library calls)
             match *b {
-                Var::U(j) => m.for_col(j, add),
-                Var::Z(j) => m.for_col(p + j, add),
+                Var::U(j) => for_col_inline(m, j, add),
+                Var::Z(j) => for_col_inline(m, p + j, add),
                 Var::Lambda => self.d_rows.iter().for_each(|&i| add(i, self.d[i])),
                 Var::W(i) => add(p + i, -T::one()),
                 Var::Artificial(i) => add(i, -T::one()),
