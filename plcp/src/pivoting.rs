@@ -146,6 +146,22 @@ fn col_max_abs<T: Scalar>(c: &Col<T>) -> T {
     }
 }
 
+/// The entries of a (contiguous) column.
+fn col_slice<T: Scalar>(c: &Col<T>) -> &[T] {
+    c.as_ref()
+        .try_as_col_major()
+        .expect("a column is contiguous")
+        .as_slice()
+}
+
+/// The entries of a (contiguous) column, mutable.
+fn col_slice_mut<T: Scalar>(c: &mut Col<T>) -> &mut [T] {
+    c.as_mut()
+        .try_as_col_major_mut()
+        .expect("a column is contiguous")
+        .as_slice_mut()
+}
+
 /// [`MatrixRef::for_col`], always inlined (with the closure) into its caller.
 #[inline(always)]
 fn for_col_inline<T: Scalar>(m: MatrixRef<'_, T>, j: usize, mut f: impl FnMut(usize, T)) {
@@ -743,8 +759,9 @@ impl<'a, T: Scalar> Engine<'a, T> {
     /// one pass over the basic columns.
     fn plain_residual(&self, x: &Col<T>) -> (Col<T>, Col<T>) {
         let dim = self.dim;
-        let mut bx: Col<T> = Col::zeros(dim);
-        let mut big: Col<T> = Col::zeros(dim);
+        let mut bx_col: Col<T> = Col::zeros(dim);
+        let mut big_col: Col<T> = Col::zeros(dim);
+        let (bx, big) = (col_slice_mut(&mut bx_col), col_slice_mut(&mut big_col));
         let (m, p) = (self.m, self.p);
         // the column of a matrix variable is -M[:, j] (of L: -d)
         for (k, b) in self.basis.iter().enumerate() {
@@ -758,14 +775,14 @@ impl<'a, T: Scalar> Engine<'a, T> {
                 big[i] = big[i].max(a.abs() * xa);
             };
             match *b {
-                Var::U(j) => m.for_col(j, add),
-                Var::Z(j) => m.for_col(p + j, add),
+                Var::U(j) => for_col_inline(m, j, add),
+                Var::Z(j) => for_col_inline(m, p + j, add),
                 Var::Lambda => self.d_rows.iter().for_each(|&i| add(i, self.d[i])),
                 Var::W(i) => add(p + i, -T::one()),
                 Var::Artificial(i) => add(i, -T::one()),
             }
         }
-        (bx, big)
+        (bx_col, big_col)
     }
 
     /// `r = rhs - B x` accumulated in [`Scalar::Wide`] and rounded once,
@@ -962,16 +979,14 @@ impl<'a, T: Scalar> Engine<'a, T> {
         // far beyond the rounding of r / s): the division only where one may
         let mut bound = T::zero();
         let l_nonbasic = self.row_of(Var::Lambda).is_none();
+        let (q, d, bx) = (col_slice(&self.q), col_slice(&self.d), col_slice(bx));
+        let big = big.map(col_slice);
         for i in 0..self.dim {
-            let ld = self.lambda * self.d[i];
+            let ld = self.lambda * d[i];
             // the basic right-hand side (see Self::rhs)
-            let rhs = if l_nonbasic {
-                self.q[i] + ld
-            } else {
-                self.q[i]
-            };
+            let rhs = if l_nonbasic { q[i] + ld } else { q[i] };
             let r = (rhs - bx[i]).abs();
-            let mut s = T::one().max(self.q[i].abs()).max(ld.abs()).max(bx[i].abs());
+            let mut s = T::one().max(q[i].abs()).max(ld.abs()).max(bx[i].abs());
             if let Some(big) = big {
                 s = s.max(big[i]);
             }
