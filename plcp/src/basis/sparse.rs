@@ -275,12 +275,15 @@ impl<T: Scalar> SparseFactor<T> {
         let mut tmp = Vec::with_capacity(self.dim);
         let permute = |x: &mut MatMut<'_, T>, perm: &[usize], tmp: &mut Vec<T>| {
             for c in 0..x.ncols() {
-                let mut col = x.as_mut().col_mut(c);
+                let col = x
+                    .as_mut()
+                    .col_mut(c)
+                    .try_as_col_major_mut()
+                    .expect("a column is contiguous")
+                    .as_slice_mut();
                 tmp.clear();
                 tmp.extend(perm.iter().map(|&p| col[p]));
-                for (i, v) in tmp.iter().enumerate() {
-                    col[i] = *v;
-                }
+                col.copy_from_slice(tmp);
             }
         };
         permute(&mut x, &self.col_fwd, &mut tmp);
@@ -682,15 +685,18 @@ impl<T: Scalar> BasisFactor<T> for SparseLu<T> {
         Some(
             (0..rows.len())
                 .map(|c| {
-                    let mut row = Col::from_fn(dim, |k| x[(k, c)]);
+                    let src = x
+                        .col(c)
+                        .try_as_col_major()
+                        .expect("a column is contiguous")
+                        .as_slice();
                     // entries at the rounding level of the row are zeros of the
                     // exact inverse (the lexicographic rule compares them exactly)
-                    let big = (0..dim).fold(T::zero(), |a, k| a.max(row[k].abs()));
+                    let big = src.iter().fold(T::zero(), |a, v| a.max(v.abs()));
                     let tol = T::from_f64(ROW_NOISE_EPS) * T::eps() * big;
-                    for k in 0..dim {
-                        if row[k].abs() <= tol {
-                            row[k] = T::zero();
-                        }
+                    let mut row = Col::<T>::zeros(dim);
+                    for (r, &v) in col_slice(&mut row).iter_mut().zip(src) {
+                        *r = if v.abs() <= tol { T::zero() } else { v };
                     }
                     row
                 })
@@ -724,22 +730,30 @@ impl<T: Scalar> BasisFactor<T> for SparseLu<T> {
         if pivot == T::zero() || !pivot.is_finite() {
             return false;
         }
-        let mut idx = Vec::new();
-        let mut val = Vec::new();
-        for i in 0..self.dim {
-            if i != r && y[i] != T::zero() {
-                idx.push(i);
-                val.push(y[i]);
-            }
-        }
-        let nnz = idx.len();
+        let ys = y
+            .as_ref()
+            .try_as_col_major()
+            .expect("a column is contiguous")
+            .as_slice();
+        let nnz = ys
+            .iter()
+            .enumerate()
+            .filter(|&(i, &v)| i != r && v != T::zero())
+            .count();
+        let (mut idx, mut val) = (Vec::new(), Vec::new());
         let dense = if nnz as f64 > DENSE_ETA * self.dim as f64 {
-            idx = Vec::new();
-            val = Vec::new();
-            let mut v: Vec<T> = (0..self.dim).map(|i| y[i]).collect();
+            let mut v = ys.to_vec();
             v[r] = T::zero();
             v
         } else {
+            idx.reserve(nnz);
+            val.reserve(nnz);
+            for (i, &v) in ys.iter().enumerate() {
+                if i != r && v != T::zero() {
+                    idx.push(i);
+                    val.push(v);
+                }
+            }
             Vec::new()
         };
         self.eta_nnz += nnz + 1;
