@@ -107,8 +107,11 @@ pub(crate) struct Engine<'a, T: Scalar> {
     /// The accumulators of [`Self::wide_residual_pair`], kept between pivots
     /// (two vectors of `p + n` wide values each time were a tenth of the
     /// trace in page faults and zeroing).
-    wide_acc: RefCell<(Vec<T::Wide>, Vec<T::Wide>)>,
+    wide_acc: RefCell<WideAccumulators<T>>,
 }
+
+/// The two accumulators of [`Engine::wide_residual_pair`] (values, column).
+type WideAccumulators<T> = (Vec<<T as Scalar>::Wide>, Vec<<T as Scalar>::Wide>);
 
 /// A residual `r` accumulated in the wide type and rounded once, `B x` as
 /// `rhs - r`, and the largest term `max_j abs(B_ij x_j)` of each row.
