@@ -138,6 +138,12 @@ pub(crate) trait BasisFactor<T: Scalar> {
     ) -> (Col<T>, Col<T>) {
         (self.solve(a), apply(m, d, p, basis, x))
     }
+    /// `(B^{-1} a, B^{-1} b)`, consuming `a` and `b`: representations that
+    /// can override it to solve both in one sweep, in place (each result as
+    /// from its own [`Self::solve`]).
+    fn solve2(&self, a: Col<T>, b: Col<T>) -> (Col<T>, Col<T>) {
+        (self.solve(&a), self.solve(&b))
+    }
     /// `B^{-1} e_k`.
     fn unit(&self, k: usize) -> Col<T>;
     /// Rows `rows` of `B^{-1}` (each indexed by system row), if this

@@ -19,6 +19,7 @@ use crate::matrix::MatrixRef;
 use crate::path::{Breakpoint, Point, Residual, Segment, Var};
 use crate::scalar::Scalar;
 use crate::settings::Settings;
+use core::cell::RefCell;
 use faer::Col;
 
 /// How a trace ended.
@@ -66,6 +67,10 @@ pub(crate) struct Engine<'a, T: Scalar> {
     pub d: Col<T>,
     /// `(max_i |q_i|, max_i |d_i|)` ([`Self::xscale`]).
     data_max: (T, T),
+    /// The rows where `d` is nonzero: the residual passes visit only these
+    /// of the column of `L` (a product with a zero entry changes no sum; a
+    /// load direction is often a single entry, the basis thousands of rows).
+    d_rows: Vec<usize>,
     pub basis: Vec<Var>,
     pos: Vec<Option<usize>>,
     factor: Box<dyn BasisFactor<T>>,
@@ -99,7 +104,14 @@ pub(crate) struct Engine<'a, T: Scalar> {
     /// The last recorded breakpoint still owes its residual (measured with the
     /// next entering column, in the same pass over the basic columns).
     residual_owed: bool,
+    /// The accumulators of [`Self::wide_residual_pair`], kept between pivots
+    /// (two vectors of `p + n` wide values each time were a tenth of the
+    /// trace in page faults and zeroing).
+    wide_acc: RefCell<WideAccumulators<T>>,
 }
+
+/// The two accumulators of [`Engine::wide_residual_pair`] (values, column).
+type WideAccumulators<T> = (Vec<<T as Scalar>::Wide>, Vec<<T as Scalar>::Wide>);
 
 /// A residual `r` accumulated in the wide type and rounded once, `B x` as
 /// `rhs - r`, and the largest term `max_j abs(B_ij x_j)` of each row.
@@ -137,6 +149,41 @@ fn col_max_abs<T: Scalar>(c: &Col<T>) -> T {
     }
 }
 
+/// The entries of a (contiguous) column.
+fn col_slice<T: Scalar>(c: &Col<T>) -> &[T] {
+    c.as_ref()
+        .try_as_col_major()
+        .expect("a column is contiguous")
+        .as_slice()
+}
+
+/// The entries of a (contiguous) column, mutable.
+fn col_slice_mut<T: Scalar>(c: &mut Col<T>) -> &mut [T] {
+    c.as_mut()
+        .try_as_col_major_mut()
+        .expect("a column is contiguous")
+        .as_slice_mut()
+}
+
+/// [`MatrixRef::for_col`], always inlined (with the closure) into its caller.
+#[inline(always)]
+fn for_col_inline<T: Scalar>(m: MatrixRef<'_, T>, j: usize, mut f: impl FnMut(usize, T)) {
+    match m {
+        MatrixRef::Dense(m) => {
+            let c = m.col(j);
+            for i in 0..c.nrows() {
+                f(i, c[i]);
+            }
+        }
+        MatrixRef::Sparse(m) => {
+            let (rows, vals) = m.col(j);
+            for (&i, &v) in rows.iter().zip(vals) {
+                f(i, v);
+            }
+        }
+    }
+}
+
 fn is_comp(v: Var) -> bool {
     matches!(v, Var::W(_) | Var::Z(_))
 }
@@ -166,6 +213,7 @@ impl<'a, T: Scalar> Engine<'a, T> {
         let dim = m.nrows();
         let n = dim - p;
         let data_max = Self::data_max(&q, &d);
+        let d_rows = Self::nonzero_rows(&d);
         let mut e = Self {
             m,
             p,
@@ -174,6 +222,7 @@ impl<'a, T: Scalar> Engine<'a, T> {
             q,
             d,
             data_max,
+            d_rows,
             basis: basis.clone(),
             pos: vec![None; 3 * n + 2 * p + 1],
             factor: match settings.basis {
@@ -199,6 +248,7 @@ impl<'a, T: Scalar> Engine<'a, T> {
             trace_pivots: std::env::var_os("PLCP_TRACE").is_some(),
             tie_tol: T::from_f64(settings.tie_tol_eps) * T::eps(),
             residual_owed: false,
+            wide_acc: RefCell::new((Vec::new(), Vec::new())),
         };
         for (r, v) in basis.iter().enumerate() {
             let k = e.var_index(*v);
@@ -313,6 +363,11 @@ impl<'a, T: Scalar> Engine<'a, T> {
             Some(l) => s.max(max_abs(&x[..l])).max(max_abs(&x[l + 1..])),
             None => s.max(max_abs(x)),
         }
+    }
+
+    /// The rows `i` with `v_i != 0`.
+    fn nonzero_rows(v: &Col<T>) -> Vec<usize> {
+        (0..v.nrows()).filter(|&i| v[i] != T::zero()).collect()
     }
 
     /// `(max_i |q_i|, max_i |d_i|)`, cached for [`Self::xscale`].
@@ -649,21 +704,24 @@ impl<'a, T: Scalar> Engine<'a, T> {
     /// basic variable (zero in exact arithmetic) then comes out at `eps`
     /// rather than at `cond * eps`.
     ///
-    /// `first`: the wide residual of the current values if already computed
-    /// ([`Self::wide_residual_pair`]).
+    /// `first`: the first correction `B^{-1} r` of the current values if
+    /// already computed (from [`Self::wide_residual_pair`]).
     fn refine_values_wide(&mut self, first: Option<Col<T>>) -> Residual {
         let l = self.row_of(Var::Lambda);
         // B x and the row scales of the current values, once measured
-        let (mut r, mut measured) = match first {
-            Some(r) => (r, None),
+        let (mut r, mut measured, mut first_dx) = match first {
+            Some(dx) => (None, None, Some(dx)),
             None => {
                 let (r, bx, big) = self.wide_residual(&self.x, None);
-                (r, Some((bx, big)))
+                (Some(r), Some((bx, big)), None)
             }
         };
         let mut last = f64::INFINITY;
         for step in 0..WIDE_REFINE_STEPS {
-            let dx = self.factor.solve(&r);
+            let dx = match first_dx.take() {
+                Some(dx) => dx,
+                None => self.factor.solve(r.as_ref().expect("a residual")),
+            };
             self.refinements += 1;
             let (mut dnorm, mut xnorm) = (0.0f64, 0.0f64);
             for k in 0..self.dim {
@@ -691,7 +749,7 @@ impl<'a, T: Scalar> Engine<'a, T> {
                 break;
             }
             let (rn, bx, big) = self.wide_residual(&self.x, None);
-            r = rn;
+            r = Some(rn);
             measured = Some((bx, big));
         }
         let (bx, big) = measured.unwrap_or_else(|| self.plain_residual(&self.x));
@@ -704,8 +762,9 @@ impl<'a, T: Scalar> Engine<'a, T> {
     /// one pass over the basic columns.
     fn plain_residual(&self, x: &Col<T>) -> (Col<T>, Col<T>) {
         let dim = self.dim;
-        let mut bx: Col<T> = Col::zeros(dim);
-        let mut big: Col<T> = Col::zeros(dim);
+        let mut bx_col: Col<T> = Col::zeros(dim);
+        let mut big_col: Col<T> = Col::zeros(dim);
+        let (bx, big) = (col_slice_mut(&mut bx_col), col_slice_mut(&mut big_col));
         let (m, p) = (self.m, self.p);
         // the column of a matrix variable is -M[:, j] (of L: -d)
         for (k, b) in self.basis.iter().enumerate() {
@@ -719,14 +778,14 @@ impl<'a, T: Scalar> Engine<'a, T> {
                 big[i] = big[i].max(a.abs() * xa);
             };
             match *b {
-                Var::U(j) => m.for_col(j, add),
-                Var::Z(j) => m.for_col(p + j, add),
-                Var::Lambda => (0..dim).for_each(|i| add(i, self.d[i])),
+                Var::U(j) => for_col_inline(m, j, add),
+                Var::Z(j) => for_col_inline(m, p + j, add),
+                Var::Lambda => self.d_rows.iter().for_each(|&i| add(i, self.d[i])),
                 Var::W(i) => add(p + i, -T::one()),
                 Var::Artificial(i) => add(i, -T::one()),
             }
         }
-        (bx, big)
+        (bx_col, big_col)
     }
 
     /// `r = rhs - B x` accumulated in [`Scalar::Wide`] and rounded once,
@@ -757,7 +816,7 @@ impl<'a, T: Scalar> Engine<'a, T> {
             match *b {
                 Var::U(j) => m.for_col(j, add),
                 Var::Z(j) => m.for_col(p + j, add),
-                Var::Lambda => (0..self.dim).for_each(|i| add(i, self.d[i])),
+                Var::Lambda => self.d_rows.iter().for_each(|&i| add(i, self.d[i])),
                 Var::W(i) => add(p + i, -T::one()),
                 Var::Artificial(i) => add(i, -T::one()),
             }
@@ -773,12 +832,57 @@ impl<'a, T: Scalar> Engine<'a, T> {
     /// same operations in the same order as in its own pass: the results are
     /// identical).
     fn wide_residual_pair(&self, x: &Col<T>, v: Var, col: &Col<T>) -> (Col<T>, Col<T>) {
+        #[cfg(target_arch = "x86_64")]
+        if T::FMA_KERNEL && crate::scalar::fma_detected() {
+            // SAFETY: the CPU has the fma feature
+            return unsafe { self.wide_residual_pair_fma(x, v, col) };
+        }
+        self.wide_residual_pair_with::<false>(x, v, col)
+    }
+
+    /// [`Self::wide_residual_pair`] compiled with fused multiply-add: the
+    /// error-free products by `fma` rather than Veltkamp's splitting (the
+    /// same numbers, see [`Scalar::wide_mul_add_fma`]).
+    ///
+    /// # Safety
+    /// The CPU must have the `fma` feature.
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "fma")]
+    unsafe fn wide_residual_pair_fma(&self, x: &Col<T>, v: Var, col: &Col<T>) -> (Col<T>, Col<T>) {
+        self.wide_residual_pair_with::<true>(x, v, col)
+    }
+
+    #[inline(always)]
+    fn wide_residual_pair_with<const FMA: bool>(
+        &self,
+        x: &Col<T>,
+        v: Var,
+        col: &Col<T>,
+    ) -> (Col<T>, Col<T>) {
         let dim = self.dim;
-        let rhs = self.rhs();
-        let mut acc: Vec<T::Wide> = (0..dim).map(|i| rhs[i].widen()).collect();
-        let a = var_column(self.m, &self.d, self.p, v);
-        let mut acc_c: Vec<T::Wide> = (0..dim).map(|i| a[i].widen()).collect();
         let (m, p) = (self.m, self.p);
+        let mut scratch = self.wide_acc.borrow_mut();
+        let (acc, acc_c) = &mut *scratch;
+        // the basic right-hand side (Self::rhs) and the column a_v (var_column)
+        acc.clear();
+        if self.row_of(Var::Lambda).is_some() {
+            acc.extend((0..dim).map(|i| self.q[i].widen()));
+        } else {
+            acc.extend((0..dim).map(|i| (self.q[i] + self.lambda * self.d[i]).widen()));
+        }
+        acc_c.clear();
+        acc_c.resize(dim, T::zero().widen());
+        match v {
+            Var::U(j) => m.for_col(j, |i, a| acc_c[i] = (-a).widen()),
+            Var::Z(j) => m.for_col(p + j, |i, a| acc_c[i] = (-a).widen()),
+            Var::W(i) => acc_c[p + i] = T::one().widen(),
+            Var::Artificial(k) => acc_c[k] = T::one().widen(),
+            Var::Lambda => {
+                for (i, c) in acc_c.iter_mut().enumerate() {
+                    *c = (-self.d[i]).widen();
+                }
+            }
+        }
         for (k, b) in self.basis.iter().enumerate() {
             let (xk, ck) = (x[k], col[k]);
             let (on_x, on_c) = (xk != T::zero(), ck != T::zero());
@@ -787,16 +891,26 @@ impl<'a, T: Scalar> Engine<'a, T> {
             }
             let mut add = |i: usize, a: T| {
                 if on_x {
-                    acc[i] = T::wide_mul_add(acc[i], a, xk);
+                    acc[i] = if FMA {
+                        T::wide_mul_add_fma(acc[i], a, xk)
+                    } else {
+                        T::wide_mul_add(acc[i], a, xk)
+                    };
                 }
                 if on_c {
-                    acc_c[i] = T::wide_mul_add(acc_c[i], a, ck);
+                    acc_c[i] = if FMA {
+                        T::wide_mul_add_fma(acc_c[i], a, ck)
+                    } else {
+                        T::wide_mul_add(acc_c[i], a, ck)
+                    };
                 }
             };
+            // (for_col_inline: a kernel compiled with fma must inline the
+            // closure, or its products are library calls)
             match *b {
-                Var::U(j) => m.for_col(j, add),
-                Var::Z(j) => m.for_col(p + j, add),
-                Var::Lambda => (0..dim).for_each(|i| add(i, self.d[i])),
+                Var::U(j) => for_col_inline(m, j, add),
+                Var::Z(j) => for_col_inline(m, p + j, add),
+                Var::Lambda => self.d_rows.iter().for_each(|&i| add(i, self.d[i])),
                 Var::W(i) => add(p + i, -T::one()),
                 Var::Artificial(i) => add(i, -T::one()),
             }
@@ -812,11 +926,14 @@ impl<'a, T: Scalar> Engine<'a, T> {
     /// accumulated in [`Scalar::Wide`] beyond
     /// [`crate::tolerance::WIDE_REFINE_COND_EPS`], in the working precision
     /// below.
-    /// `residual`: the wide residual `a_v - B col` if already computed.
-    fn refine_column(&mut self, v: Var, col: &mut Col<T>, residual: Option<Col<T>>) {
-        let r = if let Some(r) = residual {
-            r
-        } else if self.refine_wide {
+    /// `correction`: `B^{-1}` of the wide residual `a_v - B col` if already
+    /// computed.
+    fn refine_column(&mut self, v: Var, col: &mut Col<T>, correction: Option<Col<T>>) {
+        if let Some(dc) = correction {
+            self.apply_column_correction(col, &dc);
+            return;
+        }
+        let r = if self.refine_wide {
             self.wide_residual(col, Some(v)).0
         } else {
             // below the wide threshold the working precision's residual
@@ -826,6 +943,11 @@ impl<'a, T: Scalar> Engine<'a, T> {
             Col::from_fn(self.dim, |i| a[i] - bc[i])
         };
         let dc = self.factor.solve(&r);
+        self.apply_column_correction(col, &dc);
+    }
+
+    /// `col += dc`, entries at the rounding level of `col` set to zero.
+    fn apply_column_correction(&mut self, col: &mut Col<T>, dc: &Col<T>) {
         let colmax = col_max_abs(col);
         // the correction spreads rounding noise over every entry: entries below
         // one rounding of the column are zeros (the sparse basis stores the
@@ -860,16 +982,14 @@ impl<'a, T: Scalar> Engine<'a, T> {
         // far beyond the rounding of r / s): the division only where one may
         let mut bound = T::zero();
         let l_nonbasic = self.row_of(Var::Lambda).is_none();
+        let (q, d, bx) = (col_slice(&self.q), col_slice(&self.d), col_slice(bx));
+        let big = big.map(col_slice);
         for i in 0..self.dim {
-            let ld = self.lambda * self.d[i];
+            let ld = self.lambda * d[i];
             // the basic right-hand side (see Self::rhs)
-            let rhs = if l_nonbasic {
-                self.q[i] + ld
-            } else {
-                self.q[i]
-            };
+            let rhs = if l_nonbasic { q[i] + ld } else { q[i] };
             let r = (rhs - bx[i]).abs();
-            let mut s = T::one().max(self.q[i].abs()).max(ld.abs()).max(bx[i].abs());
+            let mut s = T::one().max(q[i].abs()).max(ld.abs()).max(bx[i].abs());
             if let Some(big) = big {
                 s = s.max(big[i]);
             }
@@ -931,7 +1051,8 @@ impl<'a, T: Scalar> Engine<'a, T> {
                 self.factor.set_refine(true);
             }
             // the entering column's wide residual, when a pass for the values computed it
-            let mut col_residual: Option<Col<T>> = None;
+            // and its correction (solved with the values' first correction)
+            let mut col_correction: Option<Col<T>> = None;
             let mut col = match rec.as_deref_mut() {
                 Some(rec) if self.residual_owed => {
                     let (col, res) = if self.refine_wide {
@@ -945,9 +1066,12 @@ impl<'a, T: Scalar> Engine<'a, T> {
                         let first = if self.refine_inside {
                             None
                         } else {
+                            // the two corrections are independent: one sweep
+                            // over the factors for both
                             let (values, column) = self.wide_residual_pair(&self.x, driver, &col);
-                            col_residual = Some(column);
-                            Some(values)
+                            let (dx, dc) = self.factor.solve2(values, column);
+                            col_correction = Some(dc);
+                            Some(dx)
                         };
                         (col, self.refine_values_wide(first))
                     } else {
@@ -1000,7 +1124,7 @@ impl<'a, T: Scalar> Engine<'a, T> {
                     // its refinement idle, see tolerance::REFINE_IDLE_EPS)
                     self.refinements += usize::from(self.factor.last_solve_refined());
                 } else {
-                    self.refine_column(driver, &mut col, col_residual.take());
+                    self.refine_column(driver, &mut col, col_correction.take());
                 }
             }
             let colmax = col_max_abs(&col);
@@ -1361,6 +1485,7 @@ impl<'a, T: Scalar> Engine<'a, T> {
     /// recomputes the basic values with `L` nonbasic at `lambda`.
     pub(crate) fn reset_system(&mut self, q: Col<T>, d: Col<T>, lambda: T) -> Result<(), String> {
         self.data_max = Self::data_max(&q, &d);
+        self.d_rows = Self::nonzero_rows(&d);
         self.q = q;
         self.d = d;
         self.lambda = lambda;

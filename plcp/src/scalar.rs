@@ -47,6 +47,20 @@ pub trait Scalar: RealField + Copy + Send + Sync + core::ops::Neg<Output = Self>
         acc + Self::mul_wide(a, b)
     }
 
+    /// True if [`Scalar::wide_mul_add_fma`] differs from
+    /// [`Scalar::wide_mul_add`] (`f64`): worth a kernel compiled with the
+    /// `fma` target feature where the CPU has it ([`fma_detected`]).
+    const FMA_KERNEL: bool = false;
+
+    /// [`Scalar::wide_mul_add`] with the error-free product taken by a fused
+    /// multiply-add (`f64`): the same result (the error of a product is a
+    /// unique number; both ways are exact), but a library call unless inlined
+    /// into code compiled with the `fma` target feature.
+    #[inline(always)]
+    fn wide_mul_add_fma(acc: Self::Wide, a: Self, b: Self) -> Self::Wide {
+        Self::wide_mul_add(acc, a, b)
+    }
+
     /// Converts from `f64` (exact for `f64` and `fx128`, rounded for `f32`).
     #[inline]
     fn from_f64(x: f64) -> Self {
@@ -154,6 +168,19 @@ impl Scalar for f64 {
             1: acc.1 + (t + e),
         }
     }
+    const FMA_KERNEL: bool = true;
+    #[inline(always)]
+    fn wide_mul_add_fma(acc: faer::fx128, a: Self, b: Self) -> faer::fx128 {
+        let p = a * b;
+        let e = a.mul_add(b, -p);
+        let s = acc.0 + p;
+        let bb = s - acc.0;
+        let t = (acc.0 - (s - bb)) + (p - bb);
+        faer::fx128 {
+            0: s,
+            1: acc.1 + (t + e),
+        }
+    }
     #[inline]
     fn mul_wide(a: Self, b: Self) -> faer::fx128 {
         // |fma(a, b, -p)| <= ulp(p) / 2: already a normalised double-double
@@ -202,6 +229,20 @@ fn two_product(a: f64, b: f64) -> (f64, f64) {
     let (bh, bl) = split(b);
     let e = al * bl - (((p - ah * bh) - al * bh) - ah * bl);
     (p, e)
+}
+
+/// Whether the CPU has fused multiply-add (x86-64: detected once and cached
+/// by the standard library; other targets: false).
+#[inline]
+pub(crate) fn fma_detected() -> bool {
+    #[cfg(target_arch = "x86_64")]
+    {
+        std::is_x86_feature_detected!("fma")
+    }
+    #[cfg(not(target_arch = "x86_64"))]
+    {
+        false
+    }
 }
 
 /// The precision a caller asks for at run time (command line, settings files).
@@ -316,6 +357,23 @@ mod tests {
             (tail_dot2 - tail_dd).abs() <= 1e-26,
             "{tail_dot2:e} vs {tail_dd:e}"
         );
+    }
+
+    #[test]
+    fn fma_product_is_the_split_product() {
+        // the error of a product is unique: Veltkamp's splitting and fma agree bitwise
+        let mut acc = 0.5f64.widen();
+        let mut acc_fma = acc;
+        for k in 1..2000u64 {
+            let a = ((k * 7919) % 1013) as f64 / 1013.0 - 0.5 + 1e-9 * k as f64;
+            let b = (((k * 104729) % 997) as f64 / 997.0 - 0.5) * 2f64.powi((k % 40) as i32 - 20);
+            acc = f64::wide_mul_add(acc, a, b);
+            acc_fma = f64::wide_mul_add_fma(acc_fma, a, b);
+            assert_eq!(
+                (acc.0.to_bits(), acc.1.to_bits()),
+                (acc_fma.0.to_bits(), acc_fma.1.to_bits())
+            );
+        }
     }
 
     #[test]

@@ -184,6 +184,71 @@ impl<T: Scalar> SparseFactor<T> {
         Self::permute(x, &self.col_inv, &mut tmp);
     }
 
+    /// `x <- A^{-1} x` and `y <- A^{-1} y` in one sweep over the factors:
+    /// each column sees the operations of its own [`Self::solve_in_place`]
+    /// (the same results), the factors' indices and values are read once.
+    pub(crate) fn solve2_in_place(&self, x: &mut [T], y: &mut [T], tmp: &mut Vec<T>) {
+        debug_assert!(x.len() == self.dim && y.len() == self.dim);
+        let permute = |v: &mut [T], perm: &[usize], tmp: &mut Vec<T>| {
+            tmp.clear();
+            tmp.extend(perm.iter().map(|&p| v[p]));
+            v.copy_from_slice(tmp);
+        };
+        permute(x, &self.row_fwd, tmp);
+        permute(y, &self.row_fwd, tmp);
+        let (l, u) = (self.lu.l_factor_unsorted(), self.lu.u_factor_unsorted());
+        // unit lower L, its diagonal stored first in each column
+        for j in 0..self.dim {
+            let (xj, yj) = (x[j], y[j]);
+            let (onx, ony) = (xj != T::zero(), yj != T::zero());
+            if !onx && !ony {
+                continue;
+            }
+            let (rows, vals) = (l.row_idx_of_col_raw(j), l.val_of_col(j));
+            if onx && ony {
+                for (&i, &lij) in rows.iter().zip(vals).skip(1) {
+                    x[i] -= lij * xj;
+                    y[i] -= lij * yj;
+                }
+            } else {
+                let (v, vj) = if onx { (&mut *x, xj) } else { (&mut *y, yj) };
+                for (&i, &lij) in rows.iter().zip(vals).skip(1) {
+                    v[i] -= lij * vj;
+                }
+            }
+        }
+        // upper U, its diagonal stored last in each column
+        for j in (0..self.dim).rev() {
+            let (onx, ony) = (x[j] != T::zero(), y[j] != T::zero());
+            if !onx && !ony {
+                continue;
+            }
+            let (rows, vals) = (u.row_idx_of_col_raw(j), u.val_of_col(j));
+            let last = vals.len() - 1;
+            debug_assert_eq!(rows[last], j);
+            let inv = T::one() / vals[last];
+            let (rows, vals) = (&rows[..last], &vals[..last]);
+            if onx && ony {
+                let (xj, yj) = (x[j] * inv, y[j] * inv);
+                x[j] = xj;
+                y[j] = yj;
+                for (&i, &uij) in rows.iter().zip(vals).rev() {
+                    x[i] -= uij * xj;
+                    y[i] -= uij * yj;
+                }
+            } else {
+                let v = if onx { &mut *x } else { &mut *y };
+                let vj = v[j] * inv;
+                v[j] = vj;
+                for (&i, &uij) in rows.iter().zip(vals).rev() {
+                    v[i] -= uij * vj;
+                }
+            }
+        }
+        permute(x, &self.col_inv, tmp);
+        permute(y, &self.col_inv, tmp);
+    }
+
     /// `x <- A^{-T} x`.
     pub(crate) fn solve_transpose_in_place(&self, x: &mut Col<T>) {
         let mut tmp = Vec::with_capacity(self.dim);
@@ -210,12 +275,15 @@ impl<T: Scalar> SparseFactor<T> {
         let mut tmp = Vec::with_capacity(self.dim);
         let permute = |x: &mut MatMut<'_, T>, perm: &[usize], tmp: &mut Vec<T>| {
             for c in 0..x.ncols() {
-                let mut col = x.as_mut().col_mut(c);
+                let col = x
+                    .as_mut()
+                    .col_mut(c)
+                    .try_as_col_major_mut()
+                    .expect("a column is contiguous")
+                    .as_slice_mut();
                 tmp.clear();
                 tmp.extend(perm.iter().map(|&p| col[p]));
-                for (i, v) in tmp.iter().enumerate() {
-                    col[i] = *v;
-                }
+                col.copy_from_slice(tmp);
             }
         };
         permute(&mut x, &self.col_fwd, &mut tmp);
@@ -245,6 +313,14 @@ impl<T: Scalar> SparseFactor<T> {
                 |x| self.solve_transpose_in_place(x),
             )
     }
+}
+
+/// The entries of a (contiguous) column.
+fn col_slice<T: Scalar>(c: &mut Col<T>) -> &mut [T] {
+    c.as_mut()
+        .try_as_col_major_mut()
+        .expect("a column is contiguous")
+        .as_slice_mut()
 }
 
 /// Hager's estimate of `||A^{-1}||_1` from solves with `A` and `A'` (Higham,
@@ -414,6 +490,42 @@ impl<T: Scalar> SparseLu<T> {
         }
     }
 
+    /// [`Self::apply_etas`] on two vectors in one pass over the eta file
+    /// (each sees the operations of its own pass).
+    fn apply_etas2(&self, x: &mut [T], y: &mut [T]) {
+        for e in &self.etas {
+            let xr = x[e.r] / e.pivot;
+            x[e.r] = xr;
+            let yr = y[e.r] / e.pivot;
+            y[e.r] = yr;
+            let (onx, ony) = (xr != T::zero(), yr != T::zero());
+            if e.dense.is_empty() {
+                if onx {
+                    for (&i, &v) in e.idx.iter().zip(&e.val) {
+                        let t = x[i] - v * xr;
+                        x[i] = t;
+                    }
+                }
+                if ony {
+                    for (&i, &v) in e.idx.iter().zip(&e.val) {
+                        let t = y[i] - v * yr;
+                        y[i] = t;
+                    }
+                }
+            } else if onx && ony {
+                for ((xi, yi), &v) in x.iter_mut().zip(y.iter_mut()).zip(&e.dense) {
+                    *xi -= v * xr;
+                    *yi -= v * yr;
+                }
+            } else if onx || ony {
+                let (z, zr) = if onx { (&mut *x, xr) } else { (&mut *y, yr) };
+                for (zi, &v) in z.iter_mut().zip(&e.dense) {
+                    *zi -= v * zr;
+                }
+            }
+        }
+    }
+
     fn apply_etas_transpose(&self, c: &mut Col<T>) {
         let c = c
             .as_mut()
@@ -537,6 +649,17 @@ impl<T: Scalar> BasisFactor<T> for SparseLu<T> {
         x
     }
 
+    fn solve2(&self, mut x: Col<T>, mut y: Col<T>) -> (Col<T>, Col<T>) {
+        let xs = col_slice(&mut x);
+        let ys = col_slice(&mut y);
+        if let Some(f) = &self.factor {
+            let mut tmp = Vec::with_capacity(self.dim);
+            f.solve2_in_place(xs, ys, &mut tmp);
+        }
+        self.apply_etas2(xs, ys);
+        (x, y)
+    }
+
     fn unit(&self, k: usize) -> Col<T> {
         let mut e = Col::zeros(self.dim);
         e[k] = T::one();
@@ -562,15 +685,18 @@ impl<T: Scalar> BasisFactor<T> for SparseLu<T> {
         Some(
             (0..rows.len())
                 .map(|c| {
-                    let mut row = Col::from_fn(dim, |k| x[(k, c)]);
+                    let src = x
+                        .col(c)
+                        .try_as_col_major()
+                        .expect("a column is contiguous")
+                        .as_slice();
                     // entries at the rounding level of the row are zeros of the
                     // exact inverse (the lexicographic rule compares them exactly)
-                    let big = (0..dim).fold(T::zero(), |a, k| a.max(row[k].abs()));
+                    let big = src.iter().fold(T::zero(), |a, v| a.max(v.abs()));
                     let tol = T::from_f64(ROW_NOISE_EPS) * T::eps() * big;
-                    for k in 0..dim {
-                        if row[k].abs() <= tol {
-                            row[k] = T::zero();
-                        }
+                    let mut row = Col::<T>::zeros(dim);
+                    for (r, &v) in col_slice(&mut row).iter_mut().zip(src) {
+                        *r = if v.abs() <= tol { T::zero() } else { v };
                     }
                     row
                 })
@@ -604,22 +730,30 @@ impl<T: Scalar> BasisFactor<T> for SparseLu<T> {
         if pivot == T::zero() || !pivot.is_finite() {
             return false;
         }
-        let mut idx = Vec::new();
-        let mut val = Vec::new();
-        for i in 0..self.dim {
-            if i != r && y[i] != T::zero() {
-                idx.push(i);
-                val.push(y[i]);
-            }
-        }
-        let nnz = idx.len();
+        let ys = y
+            .as_ref()
+            .try_as_col_major()
+            .expect("a column is contiguous")
+            .as_slice();
+        let nnz = ys
+            .iter()
+            .enumerate()
+            .filter(|&(i, &v)| i != r && v != T::zero())
+            .count();
+        let (mut idx, mut val) = (Vec::new(), Vec::new());
         let dense = if nnz as f64 > DENSE_ETA * self.dim as f64 {
-            idx = Vec::new();
-            val = Vec::new();
-            let mut v: Vec<T> = (0..self.dim).map(|i| y[i]).collect();
+            let mut v = ys.to_vec();
             v[r] = T::zero();
             v
         } else {
+            idx.reserve(nnz);
+            val.reserve(nnz);
+            for (i, &v) in ys.iter().enumerate() {
+                if i != r && v != T::zero() {
+                    idx.push(i);
+                    val.push(v);
+                }
+            }
             Vec::new()
         };
         self.eta_nnz += nnz + 1;
