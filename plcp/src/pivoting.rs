@@ -188,6 +188,24 @@ fn is_comp(v: Var) -> bool {
     matches!(v, Var::W(_) | Var::Z(_))
 }
 
+/// [`Engine::wide_residual_pair`] with fused multiply-add (see there).
+struct WidePairFma<'e, 'a, T: Scalar> {
+    engine: &'e Engine<'a, T>,
+    x: &'e Col<T>,
+    v: Var,
+    col: &'e Col<T>,
+}
+
+impl<T: Scalar> pulp::WithSimd for WidePairFma<'_, '_, T> {
+    type Output = (Col<T>, Col<T>);
+
+    #[inline(always)]
+    fn with_simd<S: pulp::Simd>(self, _simd: S) -> Self::Output {
+        self.engine
+            .wide_residual_pair_with::<true>(self.x, self.v, self.col)
+    }
+}
+
 impl<'a, T: Scalar> Engine<'a, T> {
     fn var_index(&self, v: Var) -> usize {
         let (n, p) = (self.n, self.p);
@@ -832,24 +850,19 @@ impl<'a, T: Scalar> Engine<'a, T> {
     /// same operations in the same order as in its own pass: the results are
     /// identical).
     fn wide_residual_pair(&self, x: &Col<T>, v: Var, col: &Col<T>) -> (Col<T>, Col<T>) {
-        #[cfg(target_arch = "x86_64")]
         if T::FMA_KERNEL && crate::scalar::fma_detected() {
-            // SAFETY: the CPU has the fma feature
-            return unsafe { self.wide_residual_pair_fma(x, v, col) };
+            // compiled inside pulp's target-feature functions (AVX2 and FMA),
+            // where `mul_add` is one instruction: the error-free products by
+            // `fma` rather than Veltkamp's splitting (the same numbers, see
+            // [`Scalar::wide_mul_add_fma`]); safe runtime dispatch
+            return pulp::Arch::new().dispatch(WidePairFma {
+                engine: self,
+                x,
+                v,
+                col,
+            });
         }
         self.wide_residual_pair_with::<false>(x, v, col)
-    }
-
-    /// [`Self::wide_residual_pair`] compiled with fused multiply-add: the
-    /// error-free products by `fma` rather than Veltkamp's splitting (the
-    /// same numbers, see [`Scalar::wide_mul_add_fma`]).
-    ///
-    /// # Safety
-    /// The CPU must have the `fma` feature.
-    #[cfg(target_arch = "x86_64")]
-    #[target_feature(enable = "fma")]
-    unsafe fn wide_residual_pair_fma(&self, x: &Col<T>, v: Var, col: &Col<T>) -> (Col<T>, Col<T>) {
-        self.wide_residual_pair_with::<true>(x, v, col)
     }
 
     #[inline(always)]
