@@ -614,6 +614,22 @@ pub fn section_name(frame: &Frame, system: &System, section: usize) -> SectionNa
     }
 }
 
+/// The position in `u = (q_dd, X)` of every section's moment (`None`: left
+/// out), found once: [`moment`] searches the member forces on every call.
+pub fn moment_positions(system: &System) -> Vec<Option<usize>> {
+    let nb = system.coordinates.len();
+    let mut pos = vec![None; system.sections.len()];
+    // the first force of each section, as `moment` finds it
+    for (r, f) in system.forces.iter().enumerate().rev() {
+        if let MemberForce::Moment(s) = *f {
+            if s < pos.len() {
+                pos[s] = Some(nb + r);
+            }
+        }
+    }
+    pos
+}
+
 /// The moment of `section` from the free variables `u = (q_dd, X)`, 0 if left out.
 pub fn moment(system: &System, u: &[f64], section: usize) -> f64 {
     let nb = system.coordinates.len();

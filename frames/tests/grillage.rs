@@ -707,3 +707,27 @@ fn grillage_scene_errors_name_file_line_and_key() {
     let p = Polygon::new(Curve::BendingTorsion, 4).unwrap();
     assert!((p.radius(std::f64::consts::FRAC_PI_4) - 0.5f64.sqrt()).abs() < 1e-15);
 }
+
+/// `hinge::moment_positions` (found once) reads the same moments as
+/// `hinge::moment` (a search per call), on planar and grillage scenes, with
+/// sections whose moments are left out included.
+#[test]
+fn moment_positions_agree_with_moment() {
+    let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/../scenes");
+    for name in [
+        "cantilever.toml",
+        "two-storey.toml",
+        "pipe-whip/l-shaped.toml",
+    ] {
+        let scene = Scene::from_file(format!("{dir}/{name}")).expect("scene");
+        let system = System::assemble(&scene.frame);
+        let nu = system.coordinates.len() + system.forces.len();
+        let u: Vec<f64> = (0..nu).map(|i| (i as f64 * 0.7).sin() + 0.1).collect();
+        let pos = frames::hinge::moment_positions(&system);
+        assert_eq!(pos.len(), system.sections.len());
+        for (k, p) in pos.iter().enumerate() {
+            let direct = frames::hinge::moment(&system, &u, k);
+            assert_eq!(p.map_or(0.0, |r| u[r]), direct, "{name}: section {k}");
+        }
+    }
+}
