@@ -108,12 +108,6 @@ pub fn par_for(entries: usize) -> faer::Par {
     }
 }
 
-/// `A B` on the calling thread (for the thin products of the pivoting core; see
-/// [`matvec`]).
-pub fn matmul_seq<T: Scalar>(a: MatRef<'_, T>, b: MatRef<'_, T>) -> Mat<T> {
-    matmul_par(a, b, faer::Par::Seq)
-}
-
 /// `A B` with the given parallelism (native types; the others on the calling thread).
 pub fn matmul_par<T: Scalar>(a: MatRef<'_, T>, b: MatRef<'_, T>, par: faer::Par) -> Mat<T> {
     if T::NATIVE {
