@@ -278,8 +278,9 @@ impl<'a, T: Scalar> MatrixRef<'a, T> {
         }
     }
     /// Calls `f(i, m_ij)` for the entries of column `j` (every entry of a dense
-    /// column, the stored ones of a sparse column).
-    #[inline]
+    /// column, the stored ones of a sparse column). Always inlined with `f`
+    /// (the wide residual pass, compiled with fma, needs its products inline).
+    #[inline(always)]
     pub fn for_col(&self, j: usize, mut f: impl FnMut(usize, T)) {
         match self {
             MatrixRef::Dense(m) => {

@@ -165,25 +165,6 @@ fn col_slice_mut<T: Scalar>(c: &mut Col<T>) -> &mut [T] {
         .as_slice_mut()
 }
 
-/// [`MatrixRef::for_col`], always inlined (with the closure) into its caller.
-#[inline(always)]
-fn for_col_inline<T: Scalar>(m: MatrixRef<'_, T>, j: usize, mut f: impl FnMut(usize, T)) {
-    match m {
-        MatrixRef::Dense(m) => {
-            let c = m.col(j);
-            for i in 0..c.nrows() {
-                f(i, c[i]);
-            }
-        }
-        MatrixRef::Sparse(m) => {
-            let (rows, vals) = m.col(j);
-            for (&i, &v) in rows.iter().zip(vals) {
-                f(i, v);
-            }
-        }
-    }
-}
-
 fn is_comp(v: Var) -> bool {
     matches!(v, Var::W(_) | Var::Z(_))
 }
@@ -796,8 +777,8 @@ impl<'a, T: Scalar> Engine<'a, T> {
                 big[i] = big[i].max(a.abs() * xa);
             };
             match *b {
-                Var::U(j) => for_col_inline(m, j, add),
-                Var::Z(j) => for_col_inline(m, p + j, add),
+                Var::U(j) => m.for_col(j, add),
+                Var::Z(j) => m.for_col(p + j, add),
                 Var::Lambda => self.d_rows.iter().for_each(|&i| add(i, self.d[i])),
                 Var::W(i) => add(p + i, -T::one()),
                 Var::Artificial(i) => add(i, -T::one()),
@@ -918,11 +899,11 @@ impl<'a, T: Scalar> Engine<'a, T> {
                     };
                 }
             };
-            // (for_col_inline: a kernel compiled with fma must inline the
+            // (MatrixRef::for_col is always inlined: a kernel compiled with fma must inline the
             // closure, or its products are library calls)
             match *b {
-                Var::U(j) => for_col_inline(m, j, add),
-                Var::Z(j) => for_col_inline(m, p + j, add),
+                Var::U(j) => m.for_col(j, add),
+                Var::Z(j) => m.for_col(p + j, add),
                 Var::Lambda => self.d_rows.iter().for_each(|&i| add(i, self.d[i])),
                 Var::W(i) => add(p + i, -T::one()),
                 Var::Artificial(i) => add(i, -T::one()),
