@@ -159,27 +159,14 @@ impl Scalar for f64 {
     #[inline]
     fn wide_mul_add(acc: faer::fx128, a: Self, b: Self) -> faer::fx128 {
         let (p, e) = two_product(a, b);
-        // two_sum(acc.0, p): s + t == acc.0 + p exactly
-        let s = acc.0 + p;
-        let bb = s - acc.0;
-        let t = (acc.0 - (s - bb)) + (p - bb);
-        faer::fx128 {
-            0: s,
-            1: acc.1 + (t + e),
-        }
+        add_product(acc, p, e)
     }
     const FMA_KERNEL: bool = true;
     #[inline(always)]
     fn wide_mul_add_fma(acc: faer::fx128, a: Self, b: Self) -> faer::fx128 {
         let p = a * b;
         let e = a.mul_add(b, -p);
-        let s = acc.0 + p;
-        let bb = s - acc.0;
-        let t = (acc.0 - (s - bb)) + (p - bb);
-        faer::fx128 {
-            0: s,
-            1: acc.1 + (t + e),
-        }
+        add_product(acc, p, e)
     }
     #[inline]
     fn mul_wide(a: Self, b: Self) -> faer::fx128 {
@@ -208,6 +195,19 @@ impl Scalar for faer::fx128 {
     #[inline]
     fn narrow(w: Self) -> Self {
         w
+    }
+}
+
+/// `acc + (p + e)` for an exact product `a b = p + e`: `two_sum(acc.0, p)`
+/// (`s + t == acc.0 + p` exactly), the low parts summed into the tail.
+#[inline(always)]
+fn add_product(acc: faer::fx128, p: f64, e: f64) -> faer::fx128 {
+    let s = acc.0 + p;
+    let bb = s - acc.0;
+    let t = (acc.0 - (s - bb)) + (p - bb);
+    faer::fx128 {
+        0: s,
+        1: acc.1 + (t + e),
     }
 }
 
