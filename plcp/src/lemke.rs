@@ -33,6 +33,47 @@ pub struct LcpSolution<T: Scalar> {
     pub info: Info,
 }
 
+impl<T: Scalar> LcpSolution<T> {
+    /// The answer as the [`Path`] of the PLCP `w = q + L 0 + M z` over the range
+    /// `[0, 0]`: the LCP is solved by the start phase alone (Lemke's method with
+    /// an artificial variable), which is not a path in `L`, so the path is the
+    /// single point `L = 0`: no breakpoints, no segments, `end` the solution
+    /// (`u` empty), `lambda_reached = 0`, and the status, message and info of
+    /// the solution. This is what [`crate::solve`] returns for that PLCP, and what
+    /// `plcp lcp` reports in the keys it shares with `plcp solve`. No `ray` is
+    /// recorded (a secondary ray's direction is not kept by the start phase).
+    ///
+    /// ```
+    /// use faer::{mat, col};
+    /// let lcp = plcp::Lcp::new(mat![[2.0, 1.0], [1.0, 2.0]].as_ref(), col![-5.0, -6.0].as_ref()).unwrap();
+    /// let path = plcp::solve_lcp(&lcp, &plcp::Settings::default()).unwrap().as_path();
+    /// assert_eq!(path.status, plcp::Status::Reached);
+    /// assert!(path.breakpoints.is_empty() && path.segments.is_empty());
+    /// assert_eq!((path.lambda0, path.lambda_max, path.lambda_reached), (0.0, Some(0.0), 0.0));
+    /// assert!((path.at(0.0).unwrap().z[1] - 7.0 / 3.0).abs() < 1e-12);
+    /// ```
+    pub fn as_path(&self) -> Path<T> {
+        Path {
+            status: self.status,
+            lambda0: T::zero(),
+            lambda_max: Some(T::zero()),
+            lambda_reached: T::zero(),
+            breakpoints: Vec::new(),
+            segments: Vec::new(),
+            end: Point {
+                lambda: T::zero(),
+                z: self.z.clone(),
+                w: self.w.clone(),
+                u: Col::zeros(0),
+            },
+            ray: None,
+            message: self.message.clone(),
+            info: self.info.clone(),
+            final_basis: None,
+        }
+    }
+}
+
 pub(crate) fn solve<T: Scalar>(
     problem: &Plcp<T>,
     settings: &Settings<T>,

@@ -202,6 +202,79 @@ fn malformed_json_catalogue() {
     );
 }
 
+/// A misspelt key used to be ignored (`lambda_mx`: the path was traced to
+/// infinity); every unknown key is an error naming it, its line and column and
+/// the accepted keys, and `comment` (any value) is the way to annotate.
+#[test]
+fn unknown_keys_are_refused_and_comment_is_accepted() {
+    let typo = scratch(
+        "typo.json",
+        b"{\"M\": [[2, 1], [1, 2]],\n \"q\": [1, 1],\n \"d\": [-1, -0.5],\n \"lambda_mx\": 2}",
+    );
+    fails(
+        &["solve", typo.to_str().unwrap()],
+        &[
+            "typo.json:4:2:",
+            "unknown key \"lambda_mx\"",
+            "`lambda_max`",
+            "`free`",
+            "`lambda0`",
+            "`comment`",
+        ],
+    );
+    let nested = scratch(
+        "nested.json",
+        br#"{"M": [[1]], "q": [1], "d": [1], "Free": 0}"#,
+    );
+    fails(
+        &["solve", nested.to_str().unwrap(), "--precision", "f32"],
+        &["nested.json:1:34:", "unknown key \"Free\""],
+    );
+    let noted = scratch(
+        "noted.json",
+        br#"{"comment": {"source": "README", "lambda_max": 2}, "M": [[2, 1], [1, 2]], "q": [1, 1], "d": [-1, -0.5], "lambda_max": 3}"#,
+    );
+    let v = succeeds(&["solve", noted.to_str().unwrap()]);
+    assert_eq!(v["status"], "reached");
+    assert_eq!(f(&v["lambda_reached"]), 3.0);
+}
+
+/// Invalid UTF-8 anywhere (an ignored string, the free-text tail of a `.dat`
+/// file) used to pass unchecked or lossily decoded; it is an error naming the
+/// byte offset, line and column.
+#[test]
+fn invalid_utf8_is_refused_in_every_format() {
+    let json = scratch(
+        "latin1.json",
+        b"{\"M\": [[2]], \"q\": [1],\n \"d\": [-1], \"comment\": \"r\xe9sum\xe9\"}",
+    );
+    fails(
+        &["solve", json.to_str().unwrap()],
+        &[
+            "latin1.json:2:26:",
+            "invalid UTF-8 at byte offset 48",
+            "0xE9",
+        ],
+    );
+    let dat = scratch(
+        "latin1.dat",
+        b"2\n0\n2\n2\n2 2\n2 1\n1 2\n-5 -6\nd\xe9j\xe0 vu\n",
+    );
+    fails(
+        &["lcp", dat.to_str().unwrap()],
+        &["latin1.dat:9:2:", "invalid UTF-8 at byte offset 27", "0xE9"],
+    );
+    let dat = scratch("latin1-num.dat", b"2\n0\n2\n2\n2 2\n2 1\n1 2\n-5 \xad6\n");
+    fails(
+        &["lcp", dat.to_str().unwrap()],
+        &[
+            "latin1-num.dat:8:4:",
+            "invalid UTF-8 at byte offset 23",
+            "0xAD",
+        ],
+    );
+}
+
 #[test]
 fn malformed_dat_catalogue() {
     let cases: &[(&str, &str, &[&str])] = &[
@@ -537,4 +610,112 @@ fn lcp_output_on_corpus() {
     }
     let v = succeeds(&["lcp", dir.join("lcp_CPS_3.dat").to_str().unwrap()]);
     assert_eq!(v["status"], "secondary_ray");
+}
+
+/// The keys `plcp solve` and `plcp lcp` share, read by one reader: the
+/// command-line contract promised both outputs `lambda_reached`,
+/// `breakpoints`, `segments` and `end` (`plcp lcp` had none of them).
+#[derive(serde::Deserialize, Debug)]
+struct Trace {
+    lambda_reached: Option<f64>,
+    pivots: usize,
+    breakpoints: Vec<TraceBreakpoint>,
+    segments: Vec<TraceSegment>,
+    end: TracePoint,
+}
+
+#[derive(serde::Deserialize, Debug)]
+#[allow(dead_code)] // read to check the shape
+struct TraceBreakpoint {
+    lambda: Option<f64>,
+    entering: String,
+    leaving: String,
+    degenerate: bool,
+    turning: bool,
+}
+
+#[derive(serde::Deserialize, Debug)]
+#[allow(dead_code)] // read to check the shape
+struct TraceSegment {
+    lambda_from: Option<f64>,
+    lambda_to: Option<f64>,
+    unbounded: bool,
+    basis: Vec<String>,
+    z0: Vec<Option<f64>>,
+    dz: Vec<Option<f64>>,
+    w0: Vec<Option<f64>>,
+    dw: Vec<Option<f64>>,
+}
+
+#[derive(serde::Deserialize, Debug)]
+struct TracePoint {
+    lambda: Option<f64>,
+    z: Vec<Option<f64>>,
+    w: Vec<Option<f64>>,
+}
+
+fn trace(v: &Value) -> Trace {
+    serde_json::from_value(v.clone()).unwrap_or_else(|e| panic!("not a trace ({e}): {v}"))
+}
+
+#[test]
+fn lcp_and_solve_outputs_share_one_reader() {
+    // plcp solve: a path with a breakpoint
+    let good = scratch("trace.json", GOOD.as_bytes());
+    let t = trace(&succeeds(&["solve", good.to_str().unwrap()]));
+    assert_eq!((t.breakpoints.len(), t.segments.len()), (1, 2));
+    assert_eq!(t.lambda_reached, None); // an unbounded ray: infinity
+                                        // plcp lcp on deudeu (w = q + M z, M = [[2, 1], [1, 2]], q = (-5, -6)), and
+                                        // the same LCP as the PLCP with d = 0 over [0, 0] through plcp solve: the
+                                        // same point path, read by the same reader
+    let dat = scratch("deudeu.dat", b"2\n0\n2\n2\n2 2\n2 1\n1 2\n-5 -6\n");
+    let as_plcp = scratch(
+        "deudeu.json",
+        br#"{"M": [[2, 1], [1, 2]], "q": [-5, -6], "d": [0, 0], "lambda_max": 0}"#,
+    );
+    for prec in ["f32", "f64", "f128"] {
+        let v = succeeds(&["lcp", dat.to_str().unwrap(), "--precision", prec]);
+        let lcp = trace(&v);
+        let plcp = trace(&succeeds(&[
+            "solve",
+            as_plcp.to_str().unwrap(),
+            "--precision",
+            prec,
+        ]));
+        let tol = if prec == "f32" { 1e-5 } else { 1e-12 };
+        assert_eq!(v["status"], "solved", "{prec}");
+        assert_eq!(lcp.lambda_reached, Some(0.0), "{prec}");
+        assert_eq!(lcp.end.lambda, Some(0.0), "{prec}");
+        assert!(
+            lcp.breakpoints.is_empty() && lcp.segments.is_empty(),
+            "{prec}"
+        );
+        assert_eq!(lcp.lambda_reached, plcp.lambda_reached, "{prec}");
+        assert_eq!(lcp.pivots, plcp.pivots, "{prec}");
+        assert_eq!(
+            (lcp.breakpoints.len(), lcp.segments.len()),
+            (plcp.breakpoints.len(), plcp.segments.len()),
+            "{prec}"
+        );
+        let exact = [4.0 / 3.0, 7.0 / 3.0];
+        for (i, want) in exact.iter().enumerate() {
+            let (a, b) = (lcp.end.z[i].unwrap(), plcp.end.z[i].unwrap());
+            assert!(
+                (a - want).abs() < tol && (b - want).abs() < tol,
+                "{prec}: z{i} {a} {b}"
+            );
+            assert!(lcp.end.w[i].unwrap().abs() < tol, "{prec}: w{i}");
+        }
+        // the keys of the lcp report kept, and end agrees with them
+        assert_eq!(v["z"], v["end"]["z"], "{prec}");
+        assert_eq!(v["w"], v["end"]["w"], "{prec}");
+        assert!(f(&v["siconos_error"]) <= tol, "{prec}");
+    }
+    // an LCP with no solution found: still the same shape, status secondary_ray
+    let cps = scratch("noneg.dat", b"2\n0\n2\n2\n2 2\n-1 0\n0 -1\n-1 -1\n");
+    let v = succeeds(&["lcp", cps.to_str().unwrap()]);
+    let t = trace(&v);
+    assert_eq!(v["status"], "secondary_ray");
+    assert!(t.breakpoints.is_empty() && t.segments.is_empty());
+    assert_eq!(t.end.z.len(), 2);
 }

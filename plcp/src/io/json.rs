@@ -14,9 +14,13 @@
 //!   rows), default 0;
 //! * `lambda0`: the start value of the parameter, default 0.
 //!
+//! * `comment`: any JSON value, read and ignored (the place for annotations).
+//!
 //! Entries may also be written as strings that name a number (`"NaN"`, `"inf"`,
 //! `"1e-3"`); non-finite entries are then rejected by name (`q[2]`, `M(1, 3)`).
-//! Unknown keys are ignored. Syntax errors give the file, line and column.
+//! Any other key is an error naming it, its line and column and the accepted
+//! keys (a misspelt `lambda_max` would otherwise change the problem silently).
+//! The file must be UTF-8 throughout. Syntax errors give the file, line and column.
 //!
 //! ```
 //! let text = r#"{"M": [[2, 1], [1, 2]], "q": [1, 1], "d": [-1, -0.5]}"#;
@@ -29,13 +33,16 @@
 //!
 //! # Output
 //!
-//! One JSON object (see [`path_json`] and [`lcp_json`] for the keys). Numbers
+//! One JSON object (see [`path_json`] and [`lcp_json`] for the keys). Both
+//! share `lambda_reached`, `pivots`, `breakpoints`, `segments` and `end`, written
+//! by one piece of code (a plain LCP as the one-point path of
+//! [`LcpSolution::as_path`]), so one reader handles both. Numbers
 //! are written through `f64` (an `fx128` value is rounded to the nearest
 //! `f64`). **A number that is not finite (NaN, an infinity) is written as
 //! `null`**, so the output is always valid JSON: `lambda_to` of an unbounded
 //! last segment and `lambda_max` when infinite are `null` by design.
 
-use super::{check_order, convert, read_bytes};
+use super::{check_order, convert, read_bytes, utf8_in};
 use crate::error::PlcpError;
 use crate::lemke::LcpSolution;
 use crate::path::{Path, Point, Residual, Status};
@@ -80,6 +87,7 @@ impl<'de> Deserialize<'de> for Num {
 }
 
 #[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
 struct RawPlcp {
     #[serde(rename = "M", alias = "m")]
     m: Vec<Vec<Num>>,
@@ -91,24 +99,55 @@ struct RawPlcp {
     free: usize,
     #[serde(default)]
     lambda0: Option<Num>,
+    /// An annotation: any JSON value, read and ignored.
+    #[serde(default, rename = "comment")]
+    _comment: Option<serde::de::IgnoredAny>,
 }
 
-fn parse_error(file: &str, e: serde_json::Error) -> PlcpError {
+fn parse_error(text: &str, file: &str, e: serde_json::Error) -> PlcpError {
     let full = e.to_string();
     let suffix = format!(" at line {} column {}", e.line(), e.column());
-    let message = full.strip_suffix(&suffix).unwrap_or(&full).to_string();
+    let mut message = full.strip_suffix(&suffix).unwrap_or(&full).to_string();
+    let (line, mut column) = (e.line().max(1), e.column().max(1));
+    if let Some(rest) = message.strip_prefix("unknown field `") {
+        // serde_json stops just past the key: point at its opening quote
+        let key = rest.split('`').next().unwrap_or("");
+        column = key_column(text, line, column, key);
+        let accepted = rest
+            .split_once(", expected one of ")
+            .map_or("", |(_, list)| list);
+        message = format!(
+            "unknown key \"{key}\": the accepted keys are {accepted} (a typo would change the problem silently; annotate with \"comment\")"
+        );
+    }
     PlcpError::Parse {
         file: file.to_string(),
-        line: e.line().max(1),
-        column: e.column().max(1),
+        line,
+        column,
         message,
+    }
+}
+
+/// The 1-based column of the opening quote of `"key"` when it ends at or just
+/// before `column` on `line` (as serde_json reports an unknown key), else `column`.
+fn key_column(text: &str, line: usize, column: usize, key: &str) -> usize {
+    let Some(l) = text.split('\n').nth(line - 1) else {
+        return column;
+    };
+    let quoted = format!("\"{key}\"");
+    // serde_json's column counts bytes; search the line up to it
+    let end = column.min(l.len());
+    match l.get(..end).and_then(|head| head.rfind(&quoted)) {
+        Some(b) => l[..b].chars().count() + 1,
+        None => column,
     }
 }
 
 /// Parses a problem file's bytes (see the [module docs](self)); `file` is the
 /// name used in error messages. Values are read as `f64` and converted to `T`.
 pub fn parse_plcp<T: Scalar>(bytes: &[u8], file: &str) -> Result<Plcp<T>, PlcpError> {
-    let raw: RawPlcp = serde_json::from_slice(bytes).map_err(|e| parse_error(file, e))?;
+    let text = utf8_in(bytes, file)?;
+    let raw: RawPlcp = serde_json::from_str(text).map_err(|e| parse_error(text, file, e))?;
     let dim = raw.m.len();
     if dim == 0 {
         return Err(PlcpError::Invalid {
@@ -358,6 +397,57 @@ struct RayOut {
     du: Option<Vec<Num64>>,
 }
 
+/// The keys `plcp solve` and `plcp lcp` share, in both outputs in this order
+/// (one reader handles both): `lambda_reached`, `pivots`, `breakpoints`,
+/// `segments`, `end`.
+#[derive(Serialize)]
+struct TraceOut {
+    lambda_reached: Num64,
+    pivots: usize,
+    breakpoints: Vec<BreakpointOut>,
+    segments: Vec<SegmentOut>,
+    end: PointOut,
+}
+
+impl TraceOut {
+    /// `free` is the number of free variables (`u` is written when positive).
+    fn new<T: Scalar>(free: usize, path: &Path<T>) -> Self {
+        let p = free;
+        Self {
+            lambda_reached: num(path.lambda_reached),
+            pivots: path.info.pivots,
+            breakpoints: path
+                .breakpoints
+                .iter()
+                .map(|b| BreakpointOut {
+                    lambda: num(b.lambda),
+                    entering: b.entering.to_string(),
+                    leaving: b.leaving.to_string(),
+                    degenerate: b.degenerate,
+                    turning: b.turning,
+                })
+                .collect(),
+            segments: path
+                .segments
+                .iter()
+                .map(|s| SegmentOut {
+                    lambda_from: num(s.lambda_from),
+                    lambda_to: if s.unbounded { None } else { num(s.lambda_to) },
+                    unbounded: s.unbounded,
+                    basis: s.basis.iter().map(|v| v.to_string()).collect(),
+                    z0: vec(&s.z0()),
+                    dz: vec(&s.dz),
+                    w0: vec(&s.w0()),
+                    dw: vec(&s.dw),
+                    u0: free_vec(p, &s.u0()),
+                    du: free_vec(p, &s.du),
+                })
+                .collect(),
+            end: PointOut::new(p, &path.end),
+        }
+    }
+}
+
 #[derive(Serialize)]
 struct PathOut {
     status: &'static str,
@@ -365,11 +455,8 @@ struct PathOut {
     free: usize,
     lambda0: Num64,
     lambda_max: Num64,
-    lambda_reached: Num64,
-    pivots: usize,
-    breakpoints: Vec<BreakpointOut>,
-    segments: Vec<SegmentOut>,
-    end: PointOut,
+    #[serde(flatten)]
+    trace: TraceOut,
     at: Vec<AtOut>,
     residual: ResidualOut,
     timing: TimingOut,
@@ -450,36 +537,7 @@ pub fn path_json<T: Scalar>(
         free: p,
         lambda0: num(path.lambda0),
         lambda_max: path.lambda_max.and_then(num),
-        lambda_reached: num(path.lambda_reached),
-        pivots: path.info.pivots,
-        breakpoints: path
-            .breakpoints
-            .iter()
-            .map(|b| BreakpointOut {
-                lambda: num(b.lambda),
-                entering: b.entering.to_string(),
-                leaving: b.leaving.to_string(),
-                degenerate: b.degenerate,
-                turning: b.turning,
-            })
-            .collect(),
-        segments: path
-            .segments
-            .iter()
-            .map(|s| SegmentOut {
-                lambda_from: num(s.lambda_from),
-                lambda_to: if s.unbounded { None } else { num(s.lambda_to) },
-                unbounded: s.unbounded,
-                basis: s.basis.iter().map(|v| v.to_string()).collect(),
-                z0: vec(&s.z0()),
-                dz: vec(&s.dz),
-                w0: vec(&s.w0()),
-                dw: vec(&s.dw),
-                u0: free_vec(p, &s.u0()),
-                du: free_vec(p, &s.du),
-            })
-            .collect(),
-        end: PointOut::new(p, &path.end),
+        trace: TraceOut::new(p, path),
         at,
         residual: res.into(),
         timing: TimingOut {
@@ -507,7 +565,8 @@ struct LcpOut {
     n: usize,
     z: Vec<Num64>,
     w: Vec<Num64>,
-    pivots: usize,
+    #[serde(flatten)]
+    trace: TraceOut,
     residual: ResidualOut,
     siconos_error: Num64,
     timing: TimingOut,
@@ -535,7 +594,10 @@ fn fresh_w<T: Scalar>(lcp: &Lcp<T>, z: &Col<T>) -> Col<T> {
 }
 
 /// The JSON report of a plain LCP (one line): `status` ([`lcp_status`]), `n`,
-/// `z`, `w`, `pivots`, `residual` (as in [`path_json`]: the solver's record and
+/// `z`, `w`, then the keys shared with [`path_json`], written by the same code
+/// from [`LcpSolution::as_path`] (the single point `L = 0`): `lambda_reached`
+/// (0), `pivots`, `breakpoints` (empty), `segments` (empty), `end` (`lambda` 0,
+/// `z`, `w`), then `residual` (as in [`path_json`]: the solver's record and
 /// a fresh evaluation of `(z, w)`), `siconos_error`
 /// ([`super::siconos::siconos_error`] of `z` and `w = q + M z` recomputed from
 /// `z`, as Siconos does), `timing` (`solve_seconds`), `info`,
@@ -561,7 +623,7 @@ pub fn lcp_json<T: Scalar>(lcp: &Lcp<T>, sol: &LcpSolution<T>, solve_seconds: f6
         n,
         z: vec(&sol.z),
         w: vec(&sol.w),
-        pivots: sol.info.pivots,
+        trace: TraceOut::new(0, &sol.as_path()),
         residual: sol.info.residual.max(fresh).into(),
         siconos_error: f(super::siconos::siconos_error(
             lcp.q(),
@@ -606,6 +668,71 @@ mod tests {
             let text = format!(r#"{{"M": [[1]], "q": [1], "d": [1], "lambda_max": {lm}}}"#);
             let p = parse_plcp::<f32>(text.as_bytes(), "p.json").unwrap();
             assert_eq!(p.lambda_max(), None, "{lm}");
+        }
+    }
+
+    /// A misspelt key used to be skipped (`lambda_mx`: traced to infinity).
+    #[test]
+    fn unknown_keys_are_errors_with_position() {
+        let e = err("{\"M\": [[1]], \"q\": [1],\n  \"d\": [1], \"lambda_mx\": 2}");
+        assert!(
+            e.starts_with("p.json:2:13: unknown key \"lambda_mx\""),
+            "{e}"
+        );
+        for key in [
+            "`M`",
+            "`q`",
+            "`d`",
+            "`lambda_max`",
+            "`free`",
+            "`lambda0`",
+            "`comment`",
+        ] {
+            assert!(e.contains(key), "{key} not listed: {e}");
+        }
+        // a key with a non-ASCII name, after non-ASCII text on its line: columns count characters
+        let e = err("{\"M\": [[1]], \"comment\": \"é\", \"λ\": 1, \"q\": [1], \"d\": [1]}");
+        assert!(e.starts_with("p.json:1:30: unknown key \"λ\""), "{e}");
+        // `comment` takes any JSON value
+        for c in [
+            "\"text\"",
+            "1",
+            "null",
+            "[1, \"x\"]",
+            "{\"by\": \"me\", \"lambda_max\": 3}",
+        ] {
+            let text = format!(r#"{{"comment": {c}, "M": [[1]], "q": [1], "d": [1]}}"#);
+            let p = parse_plcp::<f64>(text.as_bytes(), "p.json").unwrap();
+            assert_eq!(p.lambda_max(), None, "{c}");
+        }
+    }
+
+    #[test]
+    fn invalid_utf8_is_an_error_naming_the_offset() {
+        // in an ignored string (serde_json would skip it unchecked), in a key, outside strings
+        for (bytes, offset, line, column) in [
+            (
+                &b"{\"M\": [[1]], \"q\": [1], \"d\": [1], \"comment\": \"\xff\"}"[..],
+                45,
+                1,
+                46,
+            ),
+            (
+                &b"{\"M\": [[1]],\n\"q\": [1], \"d\": [1], \"\xc3\": 1}"[..],
+                34,
+                2,
+                22,
+            ),
+            (
+                &b"{\"M\": [[1]], \"q\": [1], \"d\": [1]}\xe9"[..],
+                32,
+                1,
+                33,
+            ),
+        ] {
+            let e = parse_plcp::<f64>(bytes, "p.json").unwrap_err().to_string();
+            let want = format!("p.json:{line}:{column}: invalid UTF-8 at byte offset {offset}:");
+            assert!(e.starts_with(&want), "{e} (want {want})");
         }
     }
 

@@ -25,6 +25,9 @@
 //! [free text]               an optional trailing comment, ignored
 //! ```
 //!
+//! The whole file must be UTF-8, the trailing comment included
+//! ([`parse_lcp_bytes`], [`read_lcp`]).
+//!
 //! Errors name the file, the 1-based line and column of the offending token
 //! (or the end of the file), and what was expected there.
 //!
@@ -35,7 +38,7 @@
 //! assert_eq!(lcp.q()[1], -6.0);
 //! ```
 
-use super::{check_order, convert, read_bytes};
+use super::{check_order, convert, read_bytes, utf8_in};
 use crate::error::PlcpError;
 use crate::problem::Lcp;
 use crate::scalar::Scalar;
@@ -403,13 +406,17 @@ fn build<T: Scalar>(m: &[f64], q: &[f64], n: usize) -> Result<Lcp<T>, PlcpError>
     Lcp::new(mt.as_ref(), qt.as_ref())
 }
 
-/// Reads a Siconos `.dat` file (see the [module docs](self)).
+/// Parses the bytes of a Siconos `.dat` file: [`parse_lcp`] after checking
+/// that they are UTF-8 throughout, the trailing comment included (an error
+/// names the byte offset, line and column of the first bad byte).
+pub fn parse_lcp_bytes<T: Scalar>(bytes: &[u8], file: &str) -> Result<Lcp<T>, PlcpError> {
+    parse_lcp(utf8_in(bytes, file)?, file)
+}
+
+/// Reads a Siconos `.dat` file (see the [module docs](self) and [`parse_lcp_bytes`]).
 pub fn read_lcp<T: Scalar>(path: &std::path::Path) -> Result<Lcp<T>, PlcpError> {
     let bytes = read_bytes(path)?;
-    // The trailing comment may hold anything: decode leniently (a bad byte in the
-    // numeric part becomes U+FFFD and is then reported as a non-numeric token).
-    let text = String::from_utf8_lossy(&bytes);
-    parse_lcp(&text, &path.display().to_string())
+    parse_lcp_bytes(&bytes, &path.display().to_string())
 }
 
 /// The Siconos error measure `||z - max(0, z - w)||_2 / ||q||_2` (unnormalised
@@ -489,6 +496,34 @@ mod tests {
         );
         let e = err("99999999 0 1 1");
         assert!(e.contains("too large"), "{e}");
+    }
+
+    /// The trailing comment used to be decoded leniently: a Latin-1 byte there
+    /// (or in a number) must be an error naming its offset, line and column.
+    #[test]
+    fn invalid_utf8_is_an_error_naming_the_offset() {
+        let good = "2 0 2 2 2 2\n2 1\n1 2\n-5 -6\nété\n";
+        assert!(parse_lcp_bytes::<f64>(good.as_bytes(), "t.dat").is_ok());
+        for (bytes, want) in [
+            (
+                &b"2 0 2 2 2 2\n2 1\n1 2\n-5 -6\n\xe9t\xe9\n"[..],
+                "t.dat:5:1: invalid UTF-8 at byte offset 26:",
+            ),
+            (
+                &b"2 0 2 2 2 2\n2 1\n1 2\n-5 -6\n\xc3\xa9t\xe9\n"[..],
+                "t.dat:5:3: invalid UTF-8 at byte offset 29:",
+            ),
+            (
+                &b"2 0 2 2 2 2\n2 \xff1\n1 2\n-5 -6\n"[..],
+                "t.dat:2:3: invalid UTF-8 at byte offset 14:",
+            ),
+        ] {
+            let e = parse_lcp_bytes::<f64>(bytes, "t.dat")
+                .unwrap_err()
+                .to_string();
+            assert!(e.starts_with(want), "{e} (want {want})");
+            assert!(e.contains("0xE9") || e.contains("0xFF"), "{e}");
+        }
     }
 
     #[test]
