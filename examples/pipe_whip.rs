@@ -50,7 +50,9 @@ fn analyse(scene: Scene) -> Result<Analysis, Box<dyn std::error::Error>> {
 }
 
 fn variant(file: &Path, from: &str, to: &str) -> Result<Scene, Box<dyn std::error::Error>> {
-    let src = std::fs::read_to_string(file)?;
+    // strict, as Scene::from_file: a byte that is not UTF-8 is named by position
+    let bytes = std::fs::read(file)?;
+    let src = plcp::io::utf8(&bytes).map_err(|e| format!("{}: {e}", file.display()))?;
     if !src.contains(from) {
         return Err(format!("{}: no \"{from}\" to vary", file.display()).into());
     }

@@ -10,8 +10,8 @@
 //!
 //! * 0, 1: a mutated plcp JSON problem -> `io::json::parse_plcp` (f64, and
 //!   sometimes f32 / fx128) -> `plcp::solve` (Lemke and Wolfe, small pivot limit);
-//! * 2: a mutated Siconos `.dat` text -> `io::siconos::parse_lcp` -> `solve_lcp`;
-//! * 3: a mutated frames scene -> `Scene::from_toml` -> system (9) -> `plcp::solve`
+//! * 2: a mutated Siconos `.dat` file -> `io::siconos::parse_lcp_bytes` -> `solve_lcp`;
+//! * 3: a mutated frames scene -> `Scene::from_bytes` -> system (9) -> `plcp::solve`
 //!   (and sometimes the whole `Analysis::run`);
 //! * 4..7: random small problems (order <= 9: `n <= 6`, `p <= 3`) with any
 //!   values (zeros, huge, tiny, subnormal, non-finite) and random settings ->
@@ -776,9 +776,9 @@ fn run_json(cx: &mut Ctx, rng: &mut ChaCha8Rng, bytes: &[u8]) {
 }
 
 fn run_dat(cx: &mut Ctx, rng: &mut ChaCha8Rng, bytes: &[u8]) {
-    let text = String::from_utf8_lossy(bytes).into_owned();
+    // the bytes as a file holds them: a mutated byte that breaks UTF-8 is an error
     let r = cx.call("parse_lcp f64", || {
-        plcp::io::siconos::parse_lcp::<f64>(&text, "fuzz.dat")
+        plcp::io::siconos::parse_lcp_bytes::<f64>(bytes, "fuzz.dat")
     });
     match r {
         Some(Ok(lcp)) => {
@@ -796,7 +796,7 @@ fn run_dat(cx: &mut Ctx, rng: &mut ChaCha8Rng, bytes: &[u8]) {
     }
     if rng.gen_bool(0.2) {
         if let Some(Err(e)) = cx.call("parse_lcp f32", || {
-            plcp::io::siconos::parse_lcp::<f32>(&text, "fuzz.dat")
+            plcp::io::siconos::parse_lcp_bytes::<f32>(bytes, "fuzz.dat")
         }) {
             cx.error("parse_lcp/f32", &e);
         }
@@ -846,8 +846,9 @@ fn run_toml(cx: &mut Ctx, rng: &mut ChaCha8Rng, bytes: &[u8]) {
             .or_default() += 1;
         return;
     }
-    let r = cx.call("Scene::from_toml", || {
-        frames::Scene::from_toml(&text, "fuzz.toml")
+    // the lossy text only screens out huge element counts; the reader gets the bytes
+    let r = cx.call("Scene::from_bytes", || {
+        frames::Scene::from_bytes(bytes, "fuzz.toml")
     });
     let scene = match r {
         Some(Ok(s)) => s,

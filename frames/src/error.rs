@@ -19,6 +19,22 @@ pub enum FramesError {
         /// What is wrong.
         message: String,
     },
+    /// A scene file is not valid TOML, has a key no table accepts, a value of
+    /// the wrong type, or is not UTF-8. Displayed on one line as
+    /// `file:line:column: key: message` (1-based; the column counts characters).
+    #[error("{file}:{line}:{column}: {key}: {message}")]
+    Syntax {
+        /// The file name as given.
+        file: String,
+        /// 1-based line.
+        line: usize,
+        /// 1-based column.
+        column: usize,
+        /// The key (an unknown key itself), or `(syntax)`, `(encoding)`.
+        key: String,
+        /// What is wrong.
+        message: String,
+    },
     /// A file could not be read or written.
     #[error("{file}: {message}")]
     Io {

@@ -2,7 +2,11 @@
 //! masses, loads, yield polygons) and the
 //! load history `lambda(t)`, read from TOML with errors that name file, line and key.
 //!
-//! The keys of a scene file (the contract; every other key is an error):
+//! The keys of a scene file (the contract; every other key is an error that
+//! names the key, its line and column, and the keys its table accepts). Every
+//! table also accepts `comment = ...` (any TOML value), read and ignored, for
+//! annotations that should travel with the data (`#` comments are fine too).
+//! The file must be UTF-8 throughout ([`Scene::from_bytes`]).
 //!
 //! ```toml
 //! title = "optional text"
@@ -112,6 +116,7 @@
 
 use crate::error::FramesError;
 use crate::yield_surface::{Curve, Polygon};
+use serde::de::IgnoredAny;
 use serde::Deserialize;
 use std::collections::HashMap;
 use toml::Spanned;
@@ -362,6 +367,9 @@ struct RawScene {
     #[serde(default)]
     load: Vec<Spanned<RawLoad>>,
     history: Option<Spanned<RawHistory>>,
+    /// An annotation (any TOML value), read and ignored.
+    #[serde(default, rename = "comment")]
+    _comment: Option<IgnoredAny>,
 }
 
 #[derive(Deserialize)]
@@ -370,6 +378,9 @@ struct RawNode {
     id: Spanned<String>,
     x: Spanned<f64>,
     y: Spanned<f64>,
+    /// An annotation (any TOML value), read and ignored.
+    #[serde(default, rename = "comment")]
+    _comment: Option<IgnoredAny>,
 }
 
 #[derive(Deserialize)]
@@ -384,12 +395,18 @@ struct RawMember {
     facets: Option<Spanned<i64>>,
     elements: Option<Spanned<i64>>,
     mass_per_length: Option<Spanned<f64>>,
+    /// An annotation (any TOML value), read and ignored.
+    #[serde(default, rename = "comment")]
+    _comment: Option<IgnoredAny>,
 }
 
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
 struct RawYield {
     facets: Option<Spanned<i64>>,
+    /// An annotation (any TOML value), read and ignored.
+    #[serde(default, rename = "comment")]
+    _comment: Option<IgnoredAny>,
 }
 
 #[derive(Deserialize)]
@@ -408,6 +425,9 @@ struct RawArc {
     plastic_axial: Option<Spanned<f64>>,
     facets: Option<Spanned<i64>>,
     mass_per_length: Option<Spanned<f64>>,
+    /// An annotation (any TOML value), read and ignored.
+    #[serde(default, rename = "comment")]
+    _comment: Option<IgnoredAny>,
 }
 
 #[derive(Deserialize)]
@@ -415,6 +435,9 @@ struct RawArc {
 struct RawSupport {
     node: Spanned<String>,
     fix: Spanned<Vec<Spanned<String>>>,
+    /// An annotation (any TOML value), read and ignored.
+    #[serde(default, rename = "comment")]
+    _comment: Option<IgnoredAny>,
 }
 
 #[derive(Deserialize)]
@@ -423,6 +446,9 @@ struct RawMass {
     node: Spanned<String>,
     m: Option<Spanned<f64>>,
     j: Option<Spanned<f64>>,
+    /// An annotation (any TOML value), read and ignored.
+    #[serde(default, rename = "comment")]
+    _comment: Option<IgnoredAny>,
 }
 
 #[derive(Deserialize)]
@@ -435,6 +461,9 @@ struct RawLoad {
     fz: Option<Spanned<f64>>,
     mx: Option<Spanned<f64>>,
     my: Option<Spanned<f64>>,
+    /// An annotation (any TOML value), read and ignored.
+    #[serde(default, rename = "comment")]
+    _comment: Option<IgnoredAny>,
 }
 
 #[derive(Deserialize)]
@@ -445,6 +474,9 @@ struct RawHistory {
     points: Option<Spanned<Vec<Spanned<Vec<f64>>>>>,
     peak: Option<Spanned<f64>>,
     tau: Option<Spanned<f64>>,
+    /// An annotation (any TOML value), read and ignored.
+    #[serde(default, rename = "comment")]
+    _comment: Option<IgnoredAny>,
 }
 
 /// 1-based line of a byte offset.
@@ -694,44 +726,69 @@ fn push_member(
     });
 }
 
-/// Turns a toml syntax or type error into one line with file, line and key.
+/// 1-based column, in characters, of a byte offset on its line.
+fn column_of(src: &str, offset: usize) -> usize {
+    let mut end = offset.min(src.len());
+    while !src.is_char_boundary(end) {
+        end -= 1;
+    }
+    let start = src[..end].rfind('\n').map_or(0, |i| i + 1);
+    src[start..end].chars().count() + 1
+}
+
+/// Turns a toml syntax or type error into one line with file, line, column
+/// and key; an unknown key's message lists the keys its table accepts.
 fn toml_error(src: &str, file: &str, e: toml::de::Error) -> FramesError {
-    let (line, key) = match e.span() {
-        Some(span) => {
-            let text = src.get(span.clone()).unwrap_or("").trim();
-            let key = if !text.is_empty()
-                && text.len() <= 40
-                && text
-                    .chars()
-                    .all(|c| c.is_ascii_alphanumeric() || c == '_' || c == '-' || c == '.')
-            {
-                text.to_string()
-            } else {
-                // the key is the word before '=' on that line, if any
-                let l = line_of(src, span.start);
-                src.lines()
-                    .nth(l - 1)
-                    .and_then(|s| s.split_once('='))
-                    .map(|(k, _)| k.trim().to_string())
-                    .filter(|k| !k.is_empty())
-                    .unwrap_or_else(|| "(syntax)".to_string())
-            };
-            (line_of(src, span.start), key)
-        }
-        None => (0, "(syntax)".to_string()),
+    let first = e.message().lines().next().unwrap_or("invalid TOML").trim();
+    if let (Some(span), Some(rest)) = (e.span(), first.strip_prefix("unknown field `")) {
+        let key = rest.split('`').next().unwrap_or("").to_string();
+        // serde lists them as "expected one of `a`, `b`" or "expected `a` or `b`"
+        let accepted = rest
+            .split_once(", expected one of ")
+            .or_else(|| rest.split_once(", expected "))
+            .map_or("none", |(_, list)| list);
+        return FramesError::Syntax {
+            file: file.to_string(),
+            line: line_of(src, span.start),
+            column: column_of(src, span.start),
+            message: format!(
+                "unknown key \"{key}\": the accepted keys are {accepted} (a typo would change the scene silently; annotate with # or a comment key)"
+            ),
+            key,
+        };
+    }
+    let Some(span) = e.span() else {
+        return FramesError::Scene {
+            file: file.to_string(),
+            line: 0,
+            key: "(syntax)".to_string(),
+            message: first.to_string(),
+        };
     };
-    let message = e
-        .message()
-        .lines()
-        .next()
-        .unwrap_or("invalid TOML")
-        .trim()
-        .to_string();
-    FramesError::Scene {
+    let text = src.get(span.clone()).unwrap_or("").trim();
+    let key = if !text.is_empty()
+        && text.len() <= 40
+        && text
+            .chars()
+            .all(|c| c.is_ascii_alphanumeric() || c == '_' || c == '-' || c == '.')
+    {
+        text.to_string()
+    } else {
+        // the key is the word before '=' on that line, if any
+        let l = line_of(src, span.start);
+        src.lines()
+            .nth(l - 1)
+            .and_then(|s| s.split_once('='))
+            .map(|(k, _)| k.trim().to_string())
+            .filter(|k| !k.is_empty())
+            .unwrap_or_else(|| "(syntax)".to_string())
+    };
+    FramesError::Syntax {
         file: file.to_string(),
-        line,
+        line: line_of(src, span.start),
+        column: column_of(src, span.start),
         key,
-        message,
+        message: first.to_string(),
     }
 }
 
@@ -740,11 +797,25 @@ impl Scene {
     pub fn from_file(path: impl AsRef<std::path::Path>) -> Result<Scene, FramesError> {
         let path = path.as_ref();
         let file = path.display().to_string();
-        let src = std::fs::read_to_string(path).map_err(|e| FramesError::Io {
+        let bytes = std::fs::read(path).map_err(|e| FramesError::Io {
             file: file.clone(),
             message: e.to_string(),
         })?;
-        Scene::from_toml(&src, &file)
+        Scene::from_bytes(&bytes, &file)
+    }
+
+    /// Parses a scene given as the bytes of a file: [`Scene::from_toml`] after
+    /// checking that they are UTF-8 throughout, comments included (an error
+    /// names the byte offset, line and column of the first bad byte).
+    pub fn from_bytes(bytes: &[u8], file: &str) -> Result<Scene, FramesError> {
+        let src = plcp::io::utf8(bytes).map_err(|e| FramesError::Syntax {
+            file: file.to_string(),
+            line: e.line,
+            column: e.column,
+            key: "(encoding)".to_string(),
+            message: e.brief(),
+        })?;
+        Scene::from_toml(src, file)
     }
 
     /// Parses and checks a scene given as TOML text; `file` names it in errors.
@@ -1425,7 +1496,11 @@ fy = -1.0
             err(&BASE.replace("y = 0.0", "y = nan")),
             "s.toml:9: node \"B\" y: must be a finite number, got NaN"
         );
-        assert_eq!(err(&BASE.replace("plastic_moment", "plastic_momnet")), "s.toml:14: plastic_momnet: unknown field `plastic_momnet`, expected one of `id`, `from`, `to`, `plastic_moment`, `plastic_torque`, `plastic_axial`, `facets`, `elements`, `mass_per_length`");
+        let e = err(&BASE.replace("plastic_moment", "plastic_momnet"));
+        assert!(
+            e.starts_with("s.toml:14:1: plastic_momnet: unknown key \"plastic_momnet\": the accepted keys are `id`, `from`, `to`, `plastic_moment`,"),
+            "{e}"
+        );
         let e = err(&format!(
             "{BASE}[history]\nkind = \"table\"\npoints = [[0.0, 0.0], [1.0, 2.0], [2.0, 1.0]]\n"
         ));
@@ -1439,9 +1514,135 @@ fy = -1.0
             "s.toml:0: load: the scene has no nonzero [[load]]: nothing would move"
         );
         let e = err(&BASE.replace("y = 0\n", "y = \n"));
-        assert!(e.starts_with("s.toml:5: "), "{e}");
+        assert!(e.starts_with("s.toml:5:5: "), "{e}");
         // never more than one line
         assert!(!e.contains('\n'));
+    }
+
+    /// Every table of the contract, each header followed by its keys.
+    const EVERY_TABLE: [(&str, &str); 10] = [
+        ("", "title = \"every table\"\nmodel = \"planar\"\n"),
+        ("[yield]", "facets = 8\n"),
+        ("[[node]]", "id = \"A\"\nx = 1.0\ny = 0.0\n"),
+        ("[[node]]", "id = \"C\"\nx = 0.0\ny = 1.0\n"),
+        (
+            "[[arc]]",
+            "id = \"Q\"\ncentre = [0.0, 0.0]\nradius = 1.0\nstart_angle = 0.0\nend_angle = 90.0\nelements = 4\nfrom = \"A\"\nto = \"C\"\nplastic_moment = 1.0\nplastic_axial = 4.0\nmass_per_length = 1.0\n",
+        ),
+        (
+            "[[member]]",
+            "id = \"AB\"\nfrom = \"A\"\nto = \"B\"\nplastic_moment = 1.0\nelements = 2\nmass_per_length = 1.0\n",
+        ),
+        ("[[support]]", "node = \"A\"\nfix = [\"x\", \"y\", \"rz\"]\n"),
+        ("[[mass]]", "node = \"C\"\nm = 1.0\nj = 0.5\n"),
+        ("[[load]]", "node = \"C\"\nfy = 1.0\n"),
+        ("[history]", "kind = \"ramp\"\nrate = 2.0\n"),
+    ];
+
+    /// The scene with `extra` (a line) right after the header of table `at`.
+    fn every_table(at: usize, extra: &str) -> String {
+        let mut src = String::new();
+        for (i, (header, body)) in EVERY_TABLE.iter().enumerate() {
+            if !header.is_empty() {
+                src.push_str(header);
+                src.push('\n');
+            }
+            if i == at {
+                src.push_str(extra);
+                src.push('\n');
+            }
+            src.push_str(body);
+            if i == 3 {
+                src.push_str("[[node]]\nid = \"B\"\nx = 2.0\ny = 0.0\n");
+            }
+        }
+        src
+    }
+
+    /// Unknown keys were already refused by `deny_unknown_fields`; now the error
+    /// gives the column, and a `comment` key of any value is accepted in every
+    /// table (it was an unknown key everywhere).
+    #[test]
+    fn every_table_refuses_unknown_keys_and_accepts_comment() {
+        let plain = Scene::from_toml(&every_table(usize::MAX, ""), "s.toml").unwrap();
+        for at in 0..EVERY_TABLE.len() {
+            for value in [
+                "\"a note\"",
+                "3",
+                "[1, \"two\"]",
+                "{ by = \"me\", rate = 5.0 }",
+            ] {
+                let src = every_table(at, &format!("comment = {value}"));
+                let s = Scene::from_toml(&src, "s.toml")
+                    .unwrap_or_else(|e| panic!("comment = {value} in table {at}: {e}"));
+                assert_eq!(s.frame.nodes.len(), plain.frame.nodes.len());
+                assert_eq!(s.history, plain.history);
+            }
+            let src = every_table(at, "  colour = \"red\"");
+            let line = src.lines().position(|l| l.contains("colour")).unwrap() + 1;
+            let e = Scene::from_toml(&src, "s.toml").unwrap_err();
+            assert!(matches!(e, FramesError::Syntax { .. }), "{e:?}");
+            let e = e.to_string();
+            let want =
+                format!("s.toml:{line}:3: colour: unknown key \"colour\": the accepted keys are ");
+            assert!(e.starts_with(&want), "table {at}: {e}");
+            assert!(e.contains("`comment`"), "table {at}: {e}");
+            // each table lists its own keys
+            let own = EVERY_TABLE[at].1.split(" =").next().unwrap();
+            assert!(e.contains(&format!("`{own}`")), "table {at}: {e}");
+            assert!(!e.contains('\n'));
+        }
+        // nested and inline tables, and a sub-table of an array-of-tables entry
+        let inline = "history = { kind = \"ramp\", rate = 2.0, rat = 3.0 }";
+        let src = format!(
+            "{inline}\n{}",
+            every_table(usize::MAX, "").replace("[history]\nkind = \"ramp\"\nrate = 2.0\n", "")
+        );
+        assert!(Scene::from_toml(&src.replace(", rat = 3.0", ""), "s.toml").is_ok());
+        let e = err(&src);
+        let column = inline.find("rat =").unwrap() + 1;
+        assert!(
+            e.starts_with(&format!("s.toml:1:{column}: rat: unknown key \"rat\""))
+                && e.contains("`rate`"),
+            "{e}"
+        );
+        let e = err(&format!(
+            "{}[load.extra]\nfz = 1.0\n",
+            every_table(usize::MAX, "")
+        ));
+        assert!(e.contains("extra: unknown key \"extra\""), "{e}");
+        let e = err(&format!(
+            "{}[units]\nlength = \"m\"\n",
+            every_table(usize::MAX, "")
+        ));
+        assert!(
+            e.contains("units: unknown key \"units\"") && e.contains("`node`"),
+            "{e}"
+        );
+    }
+
+    /// A stray Latin-1 byte (here in a `#` comment) was an I/O error without a
+    /// position from `read_to_string`; it names offset, line and column.
+    #[test]
+    fn invalid_utf8_names_the_position() {
+        let src = format!("# r\u{e9}sum\u{e9}\n{BASE}");
+        assert!(Scene::from_bytes(src.as_bytes(), "s.toml").is_ok());
+        let mut bytes = b"# r\xe9sum\xe9\n".to_vec();
+        bytes.extend_from_slice(BASE.as_bytes());
+        let e = Scene::from_bytes(&bytes, "s.toml").unwrap_err().to_string();
+        assert!(
+            e.starts_with("s.toml:1:4: (encoding): invalid UTF-8 at byte offset 3: byte 0xE9"),
+            "{e}"
+        );
+        let mut bytes = BASE.as_bytes().to_vec();
+        bytes.extend_from_slice(b"[[mass]]\nnode = \"B\"\nm = 1.0\xff\n");
+        let e = Scene::from_bytes(&bytes, "s.toml").unwrap_err().to_string();
+        let line = BASE.lines().count() + 3;
+        let want = format!(
+            "s.toml:{line}:8: (encoding): invalid UTF-8 at byte offset {}",
+            BASE.len() + 27
+        );
+        assert!(e.starts_with(&want), "{e} (want {want})");
     }
 
     #[test]

@@ -40,6 +40,10 @@ rate = 1.0
 "#;
 
 fn bad(name: &str, src: &str) -> (i32, String) {
+    bad_bytes(name, src.as_bytes())
+}
+
+fn bad_bytes(name: &str, src: &[u8]) -> (i32, String) {
     let dir = std::env::temp_dir().join(format!("frames-cli-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let file = dir.join(name);
@@ -91,12 +95,12 @@ fn scene_errors_name_file_line_and_key() {
         (
             "typo.toml",
             GOOD.replace("plastic_moment", "plastic_momnet"),
-            ":13: plastic_momnet: unknown field",
+            ":13:1: plastic_momnet: unknown key \"plastic_momnet\": the accepted keys are `id`,",
         ),
         (
             "syntax.toml",
             GOOD.replace("y = 0.0\n[[member]]", "y = \n[[member]]"),
-            ":8: ",
+            ":8:5: y: ",
         ),
         (
             "negative-rate.toml",
@@ -121,6 +125,49 @@ fn scene_errors_name_file_line_and_key() {
         .output()
         .unwrap();
     assert_eq!(out.status.code(), Some(2));
+}
+
+/// Unknown keys name the key, line, column and the accepted keys; a `comment`
+/// key (any value) is accepted in every table; bytes that are not UTF-8 are an
+/// error naming where they are (the scene was read with `read_to_string`,
+/// whose error gave no position).
+#[test]
+fn strict_keys_comments_and_utf8() {
+    let (code, err) = bad(
+        "indented.toml",
+        &GOOD.replace("rate = 1.0", "  rate = 1.0\n  rtae = 2.0"),
+    );
+    assert_eq!(code, 2, "{err}");
+    assert!(
+        err.contains(":25:3: rtae: unknown key \"rtae\": the accepted keys are `kind`, `rate`,")
+            && err.contains("`comment`"),
+        "{err}"
+    );
+    let noted = GOOD
+        .replace("[[node]]\n", "[[node]]\ncomment = \"a joint\"\n")
+        .replace(
+            "[history]\n",
+            "[history]\ncomment = { source = \"test\", rate = 9 }\n",
+        );
+    let dir = std::env::temp_dir().join(format!("frames-cli-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let file = dir.join("noted.toml");
+    std::fs::write(&file, format!("comment = [\"top\", 1]\n{noted}")).unwrap();
+    let out = frames().arg("run").arg(&file).output().unwrap();
+    assert_eq!(
+        out.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let mut latin1 = b"# r\xe9sum\xe9 of the scene\n".to_vec();
+    latin1.extend_from_slice(GOOD.as_bytes());
+    let (code, err) = bad_bytes("latin1.toml", &latin1);
+    assert_eq!(code, 2, "{err}");
+    assert!(
+        err.contains(":1:4: (encoding): invalid UTF-8 at byte offset 3: byte 0xE9"),
+        "{err}"
+    );
 }
 
 #[test]
