@@ -88,8 +88,11 @@ fn fields(iv: &Value) -> Vec<Field> {
     }
 }
 
-/// Every section's moment at `l`: (member, element end index, value).
-fn values_at(members: &Value, l: f64) -> Vec<(String, usize, f64)> {
+/// A moment field at one `Lambda`: (member, element end index, value) per section.
+type Values = Vec<(String, usize, f64)>;
+
+/// Every section's moment at `l`.
+fn values_at(members: &Value, l: f64) -> Values {
     let mut out = Vec::new();
     for (id, m) in members.as_object().unwrap() {
         for (k, e) in m["along"].as_array().unwrap().iter().enumerate() {
@@ -143,7 +146,7 @@ fn check_scene(path: &Path) -> Vec<String> {
     let mut bad = Vec::new();
     let name = path.file_name().unwrap().to_string_lossy().to_string();
     let ivs = v["intervals"].as_array().unwrap();
-    let mut last_end: Option<(f64, Vec<(String, usize, f64)>)> = None;
+    let mut last_end: Option<(f64, Values)> = None;
     let join = |what: String,
                 l: f64,
                 x: &[(String, usize, f64)],
@@ -195,7 +198,7 @@ fn check_scene(path: &Path) -> Vec<String> {
     assert_eq!(diagrams.len(), plastic.len(), "{name}");
     for (d, iv) in diagrams.iter().zip(plastic) {
         let l = d["lambda"].as_f64().unwrap();
-        let at: Vec<(String, usize, f64)> = d["members"]
+        let at: Values = d["members"]
             .as_object()
             .unwrap()
             .iter()
