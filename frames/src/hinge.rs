@@ -235,6 +235,8 @@ struct State {
     /// `Some(mode)` if the section accelerates (on that mode; the fastest one).
     acc_mode: Vec<Option<usize>>,
     unique: bool,
+    /// The modes that accelerate, in order (for a yield polygon, its facets).
+    accelerating: Vec<usize>,
 }
 
 fn groups(frame: &Frame, system: &System) -> (Vec<HingeGroup>, Vec<Option<usize>>) {
@@ -428,6 +430,7 @@ pub fn read(frame: &Frame, system: &System, pieces: &[Piece], tolerance: f64) ->
                 yield_mode,
                 acc_mode,
                 unique,
+                accelerating: pinned,
             }
         })
         .collect();
@@ -588,8 +591,12 @@ pub fn read(frame: &Frame, system: &System, pieces: &[Piece], tolerance: f64) ->
                     && iv.at_yield == at_yield
             })
             .unwrap_or(false);
+        // the flow moving across a yield polygon (a facet starting or
+        // stopping while its section flows on) is a breakpoint without events
+        let same_facets = k == 0 || states[k - 1].accelerating == st.accelerating;
         if events.is_empty()
             && same_mechanism
+            && same_facets
             && same_acceleration(
                 system,
                 &pieces[intervals.last().map(|i| i.piece).unwrap_or(pk)],
