@@ -112,15 +112,40 @@ impl EventPoint {
     }
 }
 
+/// A piece of the path inside an interval, with the range of `Lambda` it
+/// covers there (a piece shorter than the reading's tolerance is absorbed by
+/// the next one, whose range then starts where the previous one ended).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Span {
+    /// Index into the path's pieces.
+    pub piece: usize,
+    /// Start.
+    pub lambda_from: f64,
+    /// End (`f64::INFINITY` if unbounded).
+    pub lambda_to: f64,
+}
+
 /// An interval of `Lambda` with one mechanism.
+///
+/// The path may pivot inside an interval: in the rigid phase of an
+/// indeterminate frame, as redundant moments reach yield, and in a plastic
+/// interval where the stress is not unique. The accelerations are one affine
+/// function on the whole interval (zero in the rigid phase); the member
+/// forces (and the split of plastic rates between tied sections) are affine
+/// on each piece only: read them from [`Interval::piece_at`].
 #[derive(Clone, Debug, PartialEq)]
 pub struct Interval {
     /// Start.
     pub lambda_from: f64,
     /// End (`f64::INFINITY` if unbounded).
     pub lambda_to: f64,
-    /// The piece of the path that holds the affine solution on this interval.
+    /// The first piece of the path on this interval: its accelerations hold
+    /// on the whole interval, its member forces only on its own span
+    /// (`pieces[0]`).
     pub piece: usize,
+    /// The pieces of the path that make up this interval, in order, covering
+    /// `[lambda_from, lambda_to]` end to end (at least one).
+    pub pieces: Vec<Span>,
     /// True before the first plastic flow (the frame does not deform).
     pub rigid: bool,
     /// Groups that accelerate (`x*_dd > 0`).
@@ -129,6 +154,31 @@ pub struct Interval {
     pub constant_rate: Vec<usize>,
     /// Groups at yield (reported only where the stress is unique or forced).
     pub at_yield: Vec<usize>,
+}
+
+impl Interval {
+    /// The span of the piece of the path that holds `lambda`: the last one
+    /// starting at or before it (at a breakpoint between two pieces the later
+    /// one; the path is continuous there, so both give the same values up to
+    /// round-off), the first one for `lambda` before the interval.
+    pub fn span_at(&self, lambda: f64) -> Span {
+        self.pieces
+            .iter()
+            .rev()
+            .find(|s| s.lambda_from <= lambda)
+            .or(self.pieces.first())
+            .copied()
+            .unwrap_or(Span {
+                piece: self.piece,
+                lambda_from: self.lambda_from,
+                lambda_to: self.lambda_to,
+            })
+    }
+
+    /// The index of the piece of the path that holds `lambda` (see [`Interval::span_at`]).
+    pub fn piece_at(&self, lambda: f64) -> usize {
+        self.span_at(lambda).piece
+    }
 }
 
 /// A physical hinge in order of formation.
@@ -185,6 +235,8 @@ struct State {
     /// `Some(mode)` if the section accelerates (on that mode; the fastest one).
     acc_mode: Vec<Option<usize>>,
     unique: bool,
+    /// The modes that accelerate, in order (for a yield polygon, its facets).
+    accelerating: Vec<usize>,
 }
 
 fn groups(frame: &Frame, system: &System) -> (Vec<HingeGroup>, Vec<Option<usize>>) {
@@ -326,7 +378,9 @@ pub fn read(frame: &Frame, system: &System, pieces: &[Piece], tolerance: f64) ->
         let long = !p.lambda_to.is_finite()
             || p.lambda_to - p.lambda_from > tolerance * p.lambda_from.abs().max(1.0);
         if long {
-            let from = view.last().map(|v| v.2).unwrap_or(p.lambda_from);
+            // the first interval starts where the path does, even when its
+            // first pieces are too short to read
+            let from = view.last().map(|v| v.2).unwrap_or(pieces[0].lambda_from);
             view.push((i, from, p.lambda_to));
         }
     }
@@ -376,6 +430,7 @@ pub fn read(frame: &Frame, system: &System, pieces: &[Piece], tolerance: f64) ->
                 yield_mode,
                 acc_mode,
                 unique,
+                accelerating: pinned,
             }
         })
         .collect();
@@ -408,6 +463,7 @@ pub fn read(frame: &Frame, system: &System, pieces: &[Piece], tolerance: f64) ->
                 lambda_from: first.1,
                 lambda_to: last.2,
                 piece: first.0,
+                pieces: spans(&view),
                 rigid: true,
                 accelerating: vec![],
                 constant_rate: vec![],
@@ -423,10 +479,13 @@ pub fn read(frame: &Frame, system: &System, pieces: &[Piece], tolerance: f64) ->
         };
     };
     if kc > 0 {
+        // the path pivots inside the rigid phase of an indeterminate frame
+        // (redundant moments reaching yield): every piece up to the first flow
         intervals.push(Interval {
             lambda_from: view[0].1,
             lambda_to: view[kc].1,
             piece: view[0].0,
+            pieces: spans(&view[..kc]),
             rigid: true,
             accelerating: vec![],
             constant_rate: vec![],
@@ -532,8 +591,12 @@ pub fn read(frame: &Frame, system: &System, pieces: &[Piece], tolerance: f64) ->
                     && iv.at_yield == at_yield
             })
             .unwrap_or(false);
+        // the flow moving across a yield polygon (a facet starting or
+        // stopping while its section flows on) is a breakpoint without events
+        let same_facets = k == 0 || states[k - 1].accelerating == st.accelerating;
         if events.is_empty()
             && same_mechanism
+            && same_facets
             && same_acceleration(
                 system,
                 &pieces[intervals.last().map(|i| i.piece).unwrap_or(pk)],
@@ -544,6 +607,11 @@ pub fn read(frame: &Frame, system: &System, pieces: &[Piece], tolerance: f64) ->
             // nothing observable changed (a pivot on non-unique forces): extend
             if let Some(iv) = intervals.last_mut() {
                 iv.lambda_to = lambda_to;
+                iv.pieces.push(Span {
+                    piece: pk,
+                    lambda_from: lambda,
+                    lambda_to,
+                });
             }
         } else {
             breakpoints.push(EventPoint {
@@ -555,6 +623,11 @@ pub fn read(frame: &Frame, system: &System, pieces: &[Piece], tolerance: f64) ->
                 lambda_from: lambda,
                 lambda_to,
                 piece: pk,
+                pieces: vec![Span {
+                    piece: pk,
+                    lambda_from: lambda,
+                    lambda_to,
+                }],
                 rigid: false,
                 accelerating,
                 constant_rate,
@@ -571,6 +644,17 @@ pub fn read(frame: &Frame, system: &System, pieces: &[Piece], tolerance: f64) ->
         intervals,
         hinges,
     }
+}
+
+/// The spans of a run of the reading's view `(piece, from, to)`.
+fn spans(view: &[(usize, f64, f64)]) -> Vec<Span> {
+    view.iter()
+        .map(|&(piece, lambda_from, lambda_to)| Span {
+            piece,
+            lambda_from,
+            lambda_to,
+        })
+        .collect()
 }
 
 /// The accelerations of two pieces are the same affine function of `Lambda`.

@@ -350,6 +350,25 @@ impl Analysis {
                     }
                     acc.insert(n.id.clone(), Value::Object(o));
                 }
+                // the member forces piece by piece; at the interval's level
+                // only where one piece holds the whole interval (null where
+                // the path pivots inside it: no one affine field is right)
+                let pieces: Vec<Value> = r
+                    .pieces
+                    .iter()
+                    .map(|p| {
+                        json!({
+                            "lambda_from": num(p.lambda_from),
+                            "lambda_to": num(p.lambda_to),
+                            "moments": self.member_moments(|k| p.moments[k]),
+                            "second_forces": self.member_second_forces(&self.solution.pieces[p.piece], None),
+                        })
+                    })
+                    .collect();
+                let (moments, second_forces) = match pieces.as_slice() {
+                    [one] => (one["moments"].clone(), one["second_forces"].clone()),
+                    _ => (Value::Null, Value::Null),
+                };
                 json!({
                     "lambda_from": num(iv.lambda_from),
                     "lambda_to": num(iv.lambda_to),
@@ -357,8 +376,9 @@ impl Analysis {
                     "accelerating": group_nodes(&iv.accelerating),
                     "constant_rate": group_nodes(&iv.constant_rate),
                     "accelerations": acc,
-                    "moments": self.member_moments(|k| r.moments[k]),
-                    "second_forces": self.member_second_forces(&self.solution.pieces[iv.piece], None),
+                    "moments": moments,
+                    "second_forces": second_forces,
+                    "pieces": pieces,
                     "residual": {"equation": r.residual.equation, "feasibility": r.residual.feasibility, "complementarity": r.residual.complementarity},
                 })
             })
@@ -368,7 +388,7 @@ impl Analysis {
             .moments_at_breakpoints
             .iter()
             .zip(self.reading.intervals.iter().filter(|i| !i.rigid))
-            .map(|(d, iv)| json!({"lambda": num(d.lambda), "members": self.member_moments(|k| d.moments[k]), "second_forces": self.member_second_forces(&self.solution.pieces[iv.piece], Some(d.lambda))}))
+            .map(|(d, iv)| json!({"lambda": num(d.lambda), "members": self.member_moments(|k| d.moments[k]), "second_forces": self.member_second_forces(&self.solution.pieces[iv.piece_at(d.lambda)], Some(d.lambda))}))
             .collect();
         let t = &self.response.time;
         let mut nodes = Map::new();
@@ -478,12 +498,17 @@ impl Analysis {
         if k == 0 || ivs[k - 1].rigid {
             return Vec::new();
         }
-        let acc = |iv: &crate::hinge::Interval| -> Vec<bool> {
-            let p = &pieces[iv.piece];
-            let l = if iv.lambda_to.is_finite() {
-                0.5 * (iv.lambda_from + iv.lambda_to)
+        // the pieces of the path just before and just after the breakpoint,
+        // read inside their spans (an interval may hold several pieces)
+        let acc = |span: Option<&crate::hinge::Span>| -> Vec<bool> {
+            let Some(span) = span else {
+                return Vec::new();
+            };
+            let p = &pieces[span.piece];
+            let l = if span.lambda_to.is_finite() {
+                0.5 * (span.lambda_from + span.lambda_to)
             } else {
-                iv.lambda_from + iv.lambda_from.abs().max(1.0)
+                span.lambda_from + span.lambda_from.abs().max(1.0)
             };
             let z = p.z(l);
             let scale = z.iter().fold(f64::MIN_POSITIVE, |m, v| m.max(v.abs()));
@@ -491,7 +516,10 @@ impl Analysis {
                 .map(|&v| v > self.solution.tolerance * scale)
                 .collect()
         };
-        let (before, after) = (acc(&ivs[k - 1]), acc(&ivs[k]));
+        let (before, after) = (acc(ivs[k - 1].pieces.last()), acc(ivs[k].pieces.first()));
+        if before.is_empty() || after.is_empty() {
+            return Vec::new();
+        }
         let modes = &self.system.modes;
         // the facet modes of each section, in mode order (one pass over the
         // modes: a scan of all modes per section was quadratic, 4 s of a

@@ -2,12 +2,26 @@
 //! interval, the bending moments at every critical `Lambda`, the residual of
 //! system (9) on every interval, and velocities and displacements over time
 //! for the scene's history.
+//!
+//! **Member forces piece by piece.** The accelerations are one affine function
+//! of `Lambda` on each interval, but the member forces are affine only on each
+//! piece of the path: the path pivots inside the rigid phase of an
+//! indeterminate frame (a redundant moment reaching yield) and inside a
+//! plastic interval where the stress is not unique. An interval's moments are
+//! therefore given per piece ([`IntervalResponse::pieces`]), and the moments
+//! at any `Lambda` are read from the piece that holds it
+//! ([`Response::moments_at`]). They are the path's own stress state: within
+//! every section's capacity (the path keeps `y* >= 0`, to its residual) and
+//! continuous in `Lambda` (consecutive pieces and intervals join at their
+//! common breakpoint), though in the rigid phase and wherever the stress is
+//! not unique, one statically admissible state among many (see
+//! [`crate::hinge`]).
 
 use crate::assemble::System;
-use crate::hinge::{moment_positions, Interval, Reading};
+use crate::hinge::{moment_positions, Interval, Reading, Span};
 use crate::integrate::{integrate, AffinePiece, Motion, METHOD};
 use crate::model::{Frame, History};
-use crate::solve::Piece;
+use crate::solve::{Piece, Solution};
 use faer::Col;
 use plcp::{Point, Residual};
 
@@ -24,13 +38,52 @@ pub struct IntervalResponse {
     /// Accelerations per node, per component `[x, y, rz]`, affine in `Lambda`
     /// (zero for supported and left-out components).
     pub accelerations: Vec<[Affine; 3]>,
-    /// Bending moment per critical section, affine in `Lambda` (not unique
-    /// where the stress is not; see [`crate::hinge`]).
-    pub moments: Vec<Affine>,
+    /// The bending moments on each piece of the path the interval holds, in
+    /// order, covering it end to end (one piece where the path does not pivot
+    /// inside the interval).
+    pub pieces: Vec<MomentPiece>,
     /// Worst residual of the mixed PLCP of system (9) at the ends of the interval
     /// (at its start and at one more point when unbounded): equation (dynamic
     /// equilibrium, kinematics, yield), feasibility, complementarity.
     pub residual: Residual,
+}
+
+/// The bending moments on one piece of the path inside an interval.
+#[derive(Clone, Debug, PartialEq)]
+pub struct MomentPiece {
+    /// Start.
+    pub lambda_from: f64,
+    /// End (`f64::INFINITY` when unbounded).
+    pub lambda_to: f64,
+    /// The piece of the path (index into [`crate::solve::Solution::pieces`]).
+    pub piece: usize,
+    /// Bending moment per critical section, affine in `Lambda` on
+    /// `[lambda_from, lambda_to]` (not unique where the stress is not; see
+    /// [`crate::hinge`]).
+    pub moments: Vec<Affine>,
+}
+
+impl IntervalResponse {
+    /// The piece that holds `lambda`: the last one starting at or before it
+    /// (the later one at a breakpoint between two), the first one before the
+    /// interval.
+    pub fn piece_at(&self, lambda: f64) -> &MomentPiece {
+        self.pieces
+            .iter()
+            .rev()
+            .find(|p| p.lambda_from <= lambda)
+            .unwrap_or(&self.pieces[0])
+    }
+
+    /// The bending moment of every critical section at `lambda`, from the
+    /// piece that holds it.
+    pub fn moments_at(&self, lambda: f64) -> Vec<f64> {
+        self.piece_at(lambda)
+            .moments
+            .iter()
+            .map(|m| m[0] + m[1] * lambda)
+            .collect()
+    }
 }
 
 /// The bending moments at one critical `Lambda`.
@@ -68,6 +121,49 @@ pub struct Response {
     pub moments_at_breakpoints: Vec<MomentDiagram>,
     /// Over time.
     pub time: TimeResponse,
+}
+
+impl Response {
+    /// The bending moment of every critical section at `lambda`, from the
+    /// piece of the path that holds it (at a breakpoint, the piece that starts
+    /// there); `None` outside the reported intervals.
+    pub fn moments_at(&self, lambda: f64) -> Option<Vec<f64>> {
+        let iv = self
+            .intervals
+            .iter()
+            .rev()
+            .find(|iv| iv.lambda_from <= lambda)?;
+        (lambda <= iv.lambda_to).then(|| iv.moments_at(lambda))
+    }
+}
+
+/// The tolerance of the reported member forces, relative to the scene's
+/// scale: a reported moment `M_k` lies within its section's capacity as
+/// `|M_k| <= Mp_k + tol * max(Mp_k, S)`, and two fields meet at a common
+/// breakpoint as `|M_k - M'_k| <= tol * max(Mp_k, S)`, with `S` the largest
+/// `|M|` of the field there and
+///
+/// ```text
+/// tol = max(Solution::tolerance, 64 kappa eps)
+/// ```
+///
+/// (`eps` of the working precision, `kappa` the largest basis condition
+/// estimate on the path, [`plcp::Info::max_condition`]): a value solved from a
+/// basis of condition `kappa` carries a forward error of about `kappa eps`
+/// relative to the largest value solved with it. `Solution::tolerance`
+/// (`10 sqrt(eps)`) is the one the hinge reading decides yield with.
+pub fn force_tolerance(solution: &Solution) -> f64 {
+    let eps = match solution.info.precision {
+        "f32" => f64::from(f32::EPSILON),
+        "f128" => f64::EPSILON * f64::EPSILON,
+        _ => f64::EPSILON,
+    };
+    let kappa = if solution.info.max_condition.is_finite() {
+        solution.info.max_condition
+    } else {
+        0.0
+    };
+    solution.tolerance.max(64.0 * kappa * eps)
 }
 
 fn to_nodes(frame: &Frame, system: &System, q: &[f64]) -> Vec<[f64; 3]> {
@@ -145,9 +241,28 @@ pub fn build(
         for (j, c) in system.coordinates.iter().enumerate() {
             acc[c.node][c.component.index()] = [base[j], slope[j]];
         }
-        let u0 = piece.u(0.0);
-        let moments = (0..ns)
-            .map(|k| [moment(&u0, k), moment(&piece.du, k)])
+        // the member forces of every piece the interval holds
+        let moment_pieces = iv
+            .pieces
+            .iter()
+            .map(
+                |&Span {
+                     piece: pk,
+                     lambda_from,
+                     lambda_to,
+                 }| {
+                    let p = &pieces[pk];
+                    let u0 = p.u(0.0);
+                    MomentPiece {
+                        lambda_from,
+                        lambda_to,
+                        piece: pk,
+                        moments: (0..ns)
+                            .map(|k| [moment(&u0, k), moment(&p.du, k)])
+                            .collect(),
+                    }
+                },
+            )
             .collect();
         // residuals on every piece the interval spans
         let mut res = Residual::default();
@@ -164,7 +279,7 @@ pub fn build(
             lambda_from: iv.lambda_from,
             lambda_to: iv.lambda_to,
             accelerations: acc,
-            moments,
+            pieces: moment_pieces,
             residual: res,
         });
         affine_pieces.push(AffinePiece {
@@ -179,7 +294,8 @@ pub fn build(
         .iter()
         .zip(reading.intervals.iter().filter(|i| !i.rigid))
         .map(|(b, iv)| {
-            let u = pieces[iv.piece].u(b.lambda);
+            // the piece that starts at the breakpoint
+            let u = pieces[iv.piece_at(b.lambda)].u(b.lambda);
             MomentDiagram {
                 lambda: b.lambda,
                 moments: (0..ns).map(|k| moment(&u, k)).collect(),

@@ -642,14 +642,18 @@ impl TimeStepping {
 pub fn path_state(analysis: &Analysis, t: f64) -> StepState {
     let s = &analysis.system;
     let (nb, np) = (s.coordinates.len(), s.modes.len());
+    // piece by piece: an interval's accelerations are one affine function,
+    // but the split of plastic rates between tied sections may change where
+    // the path pivots inside it
     let pieces: Vec<AffinePiece> = analysis
         .reading
         .intervals
         .iter()
-        .map(|iv| {
-            let p = &analysis.solution.pieces[iv.piece];
+        .flat_map(|iv| iv.pieces.iter().map(move |sp| (iv.rigid, sp)))
+        .map(|(rigid, sp)| {
+            let p = &analysis.solution.pieces[sp.piece];
             let (mut base, mut slope) = (vec![0.0; nb + np], vec![0.0; nb + np]);
-            if !iv.rigid {
+            if !rigid {
                 let (u0, z0) = (p.u(0.0), p.z(0.0));
                 base[..nb].copy_from_slice(&u0[..nb]);
                 slope[..nb].copy_from_slice(&p.du[..nb]);
@@ -657,8 +661,8 @@ pub fn path_state(analysis: &Analysis, t: f64) -> StepState {
                 slope[nb..].copy_from_slice(&p.dz);
             }
             AffinePiece {
-                lambda_from: iv.lambda_from,
-                lambda_to: iv.lambda_to,
+                lambda_from: sp.lambda_from,
+                lambda_to: sp.lambda_to,
                 base,
                 slope,
             }
