@@ -1511,7 +1511,6 @@ pub(crate) fn start_phase<T: Scalar>(
     use crate::path::Status;
     let (p, n) = (eng.p, eng.n);
     let dim = p + n;
-    let c = |i: usize| covering.map_or(T::one(), |c| c[i]);
     // equality rows left to artificial variables must hold already
     // relative to the data alone (no floor at one: q may be tiny)
     let mut scale = T::zero();
@@ -1521,6 +1520,21 @@ pub(crate) fn start_phase<T: Scalar>(
     if scale == T::zero() {
         scale = T::one();
     }
+    // the covering vector in the units of the right-hand side: only its
+    // direction matters (a factor rescales the artificial variable), so it is
+    // brought by a power of two (exactly) to within a factor of two of
+    // max |q + L0 d|. The artificial variable's start value `a` (and the
+    // parameter of the start phase's trace) is then dimensionless, of the
+    // order of one for any scale of the data, and the trace's tolerances
+    // (floors of one) act on it as on `L`; a uniform scaling of the data by
+    // `2^k` leaves the start phase's arithmetic unchanged but for the factor
+    let cmax = (0..n).fold(T::zero(), |m, i| {
+        m.max(covering.map_or(T::one(), |c| c[i]).abs())
+    });
+    let cunit = T::from_f64(crate::scaling::exp2i(
+        crate::scaling::exponent(scale.to_f64()) - crate::scaling::exponent(cmax.to_f64()),
+    ));
+    let c = |i: usize| covering.map_or(T::one(), |c| c[i]) * cunit;
     let tol = eng.tie_tol_value() * scale * T::from_f64(dim.max(1) as f64);
     // equality rows left to artificial variables (fixed at zero) that do not hold
     // at the start: their residual h is removed from the right-hand side at s = 0
