@@ -1588,21 +1588,25 @@ pub(crate) fn start_phase<T: Scalar>(
         TraceEnd::Reached { driver, theta } => {
             eng.settle(driver, theta).map_err(ill)?;
             if eng.trace_pivots {
-                eprintln!("start phase end: basis {:?} x {:?}", eng.basis, (0..dim).map(|r| eng.x[r].to_f64()).collect::<Vec<_>>());
+                eprintln!(
+                    "start phase end: basis {:?} x {:?}",
+                    eng.basis,
+                    (0..dim).map(|r| eng.x[r].to_f64()).collect::<Vec<_>>()
+                );
             }
-            eng.reset_system(q.clone(), d.clone(), lambda0).map_err(ill)?;
+            eng.reset_system(q.clone(), d.clone(), lambda0)
+                .map_err(ill)?;
             if eng.trace_pivots {
-                eprintln!("after reset: x {:?}", (0..dim).map(|r| eng.x[r].to_f64()).collect::<Vec<_>>());
+                eprintln!(
+                    "after reset: x {:?}",
+                    (0..dim).map(|r| eng.x[r].to_f64()).collect::<Vec<_>>()
+                );
             }
             Ok(())
         }
-        TraceEnd::SecondaryRay { .. } | TraceEnd::UnboundedRay { .. } => Err(StartFailure {
-            status: Status::Infeasible,
-            message: format!(
-                "Lemke's method with the covering vector ended on a secondary ray at L = {:e}: no solution was found at the start value (for copositive-plus M this proves there is none)",
-                lambda0.to_f64()
-            ),
-        }),
+        TraceEnd::SecondaryRay { driver, col, .. } | TraceEnd::UnboundedRay { driver, col, .. } => {
+            Err(ray_evidence(eng, q, d, lambda0, driver, &col))
+        }
         TraceEnd::Stalled(m) => Err(StartFailure {
             status: Status::Infeasible,
             message: m,
@@ -1616,6 +1620,68 @@ pub(crate) fn start_phase<T: Scalar>(
             ),
         }),
         TraceEnd::IllConditioned(m) => Err(ill(m)),
+    }
+}
+
+/// What the start phase's ray at `lambda0` proves ([`crate::evidence`]):
+/// `infeasible` with the certificate when its direction is a Farkas
+/// certificate; `ill_conditioned` when `M`'s symmetric part is positive
+/// definite (a P-matrix: a solution exists, the ray is rounding's doing);
+/// otherwise `infeasible` saying that no solution was found and that this is
+/// not a proof that none exists.
+fn ray_evidence<T: Scalar>(
+    eng: &Engine<'_, T>,
+    q: &Col<T>,
+    d: &Col<T>,
+    lambda0: T,
+    driver: Var,
+    col: &Col<T>,
+) -> StartFailure {
+    use crate::path::Status;
+    let (p, n) = (eng.p, eng.n);
+    let at = lambda0.to_f64();
+    let head = format!(
+        "Lemke's method with the covering vector ended on a secondary ray at L = {at:e}: no solution was found at the start value"
+    );
+    if p > 0 {
+        return StartFailure {
+            status: Status::Infeasible,
+            message: format!(
+                "{head}; with free variables no certificate is checked, so this does not prove that none exists"
+            ),
+        };
+    }
+    // the ray's z part: the driver rises by one, basic variables by -col
+    let mut v = Col::<T>::zeros(n);
+    for (r, b) in eng.basis.iter().enumerate() {
+        if let Var::Z(i) = *b {
+            v[i] = -col[r];
+        }
+    }
+    if let Var::Z(i) = driver {
+        v[i] = T::one();
+    }
+    let r = Col::from_fn(n, |i| q[i] + lambda0 * d[i]);
+    if let Some(why) = crate::evidence::farkas(eng.m, &r, &v) {
+        return StartFailure {
+            status: Status::Infeasible,
+            message: format!("{head}; {why}"),
+        };
+    }
+    if crate::evidence::symmetric_part_positive_definite(eng.m) {
+        return StartFailure {
+            status: Status::IllConditioned,
+            message: format!(
+                "{head}, which cannot happen for this M in exact arithmetic: its symmetric part is positive definite, so M is a P-matrix and a solution exists; the ray is an artefact of rounding in {}: use a higher precision",
+                T::NAME
+            ),
+        };
+    }
+    StartFailure {
+        status: Status::Infeasible,
+        message: format!(
+            "{head}; this does not prove that none exists: the ray's direction is no certificate of infeasibility (v >= 0, M'v <= 0, (q + L0 d)'v < 0 fails), and M's class is not known (a copositive-plus M would give one)"
+        ),
     }
 }
 

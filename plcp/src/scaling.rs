@@ -123,26 +123,36 @@ impl Equilibration {
                 }
             })
             .collect();
-        // the data's own scale, `sigma = 2^e` with `e = floor(log2 max |M_ij|)`
-        // (of the right-hand side if M is zero): everything below reads the
-        // data divided by sigma (exact), so that data scaled as a whole by
-        // `2^k` give the very same scaled problem, the factor going to the
-        // rows' scales (`z` is invariant, `w` scales with the data)
-        let mmax = match problem.matrix() {
-            MatrixRef::Dense(m) => (0..dim).fold(0.0f64, |acc, j| {
-                m.col(j)
+        // the data's own scale, `sigma = 2^e`, `e` the middle of the binary
+        // exponents of the largest and smallest nonzero `|M_ij|`, rounded up (of the
+        // right-hand side if M is zero): everything below reads the data
+        // divided by sigma (exact), so that data scaled as a whole by `2^k`
+        // give the very same scaled problem, the factor going to the rows'
+        // scales (`z` is invariant, `w` scales with the data). Data whose
+        // entries straddle one (`e = 0`) keep the scales they had without it.
+        let (mmax, mmin) = {
+            let fold = |(hi, lo): (f64, f64), v: f64| {
+                let v = v.abs();
+                if v > 0.0 && v.is_finite() {
+                    (hi.max(v), lo.min(v))
+                } else {
+                    (hi, lo)
+                }
+            };
+            match problem.matrix() {
+                MatrixRef::Dense(m) => (0..dim).fold((0.0f64, f64::INFINITY), |acc, j| {
+                    m.col(j).iter().fold(acc, |acc, v| fold(acc, v.to_f64()))
+                }),
+                MatrixRef::Sparse(m) => m
+                    .parts()
+                    .2
                     .iter()
-                    .fold(acc, |acc, v| acc.max(v.to_f64().abs()))
-            }),
-            MatrixRef::Sparse(m) => m
-                .parts()
-                .2
-                .iter()
-                .fold(0.0f64, |acc, v| acc.max(v.to_f64().abs())),
+                    .fold((0.0f64, f64::INFINITY), |acc, v| fold(acc, v.to_f64())),
+            }
         };
         let gmax_raw = graw.iter().fold(0.0f64, |a, &b| a.max(b));
-        let e = if mmax > 0.0 && mmax.is_finite() {
-            exponent(mmax)
+        let e = if mmax > 0.0 {
+            (exponent(mmax) + exponent(mmin) + 1).div_euclid(2)
         } else {
             exponent(gmax_raw)
         };
