@@ -23,6 +23,15 @@
 //!
 //! Typical data (right-hand side within `2^40` of `M`, no row's below `2^-26`
 //! of the largest) keep exactly the scaling of Ruiz on `M`.
+//!
+//! Every step reads the data divided by `sigma = 2^e`, `e` the middle of the
+//! binary exponents of the largest and smallest nonzero `|M_ij|` (rounded up),
+//! and folds `sigma` into the row scales: data scaled as a whole by `2^k` reach
+//! the pivoting as the very same scaled problem (a bit-identical path, `z`
+//! equal and `w` times `2^k`); by `10^k`, as the same problem up to the
+//! rounding of the data. Ruiz's sweeps (square roots) are not equivariant by
+//! themselves. Data whose entries straddle one (`e = 0`, such as the frames
+//! systems) keep the scales they had before.
 
 use crate::matrix::MatrixRef;
 
