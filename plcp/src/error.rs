@@ -26,6 +26,21 @@ pub enum PlcpError {
         /// The value as read.
         value: f64,
     },
+    /// A nonzero entry below the smallest normal number of the working
+    /// precision: it would be zero, or lose digits, in that type.
+    #[error("{what} entry {position} = {value:e} underflows the working precision {precision}: it is below its smallest normal number {min_normal:e} (it would be traced as zero or with lost digits); rescale the data as a whole or use a wider precision")]
+    Underflow {
+        /// Which input.
+        what: String,
+        /// Where, e.g. `(2, 3)` or `[4]`.
+        position: String,
+        /// The value as given (as read, for files).
+        value: f64,
+        /// The working precision's name.
+        precision: String,
+        /// Its smallest positive normal number.
+        min_normal: f64,
+    },
     /// A scalar argument or setting out of its range.
     #[error("invalid {what}: {why}")]
     Invalid {

@@ -58,6 +58,7 @@
 pub mod basis;
 pub mod error;
 pub mod escalate;
+pub mod evidence;
 pub mod io;
 pub mod lemke;
 pub mod linalg;

@@ -47,13 +47,7 @@ impl<T: Scalar> Csc<T> {
                     found: format!("({i}, {j})"),
                 });
             }
-            if !v.is_finite() {
-                return Err(PlcpError::NonFinite {
-                    what: "M".into(),
-                    position: format!("({i}, {j})"),
-                    value: v.to_f64(),
-                });
-            }
+            crate::problem::check_entry("M", || format!("({i}, {j})"), v)?;
         }
         let mut count = vec![0usize; ncols + 1];
         for &(_, j, _) in triplets {

@@ -1511,7 +1511,6 @@ pub(crate) fn start_phase<T: Scalar>(
     use crate::path::Status;
     let (p, n) = (eng.p, eng.n);
     let dim = p + n;
-    let c = |i: usize| covering.map_or(T::one(), |c| c[i]);
     // equality rows left to artificial variables must hold already
     // relative to the data alone (no floor at one: q may be tiny)
     let mut scale = T::zero();
@@ -1521,6 +1520,21 @@ pub(crate) fn start_phase<T: Scalar>(
     if scale == T::zero() {
         scale = T::one();
     }
+    // the covering vector in the units of the right-hand side: only its
+    // direction matters (a factor rescales the artificial variable), so it is
+    // brought by a power of two (exactly) to within a factor of two of
+    // max |q + L0 d|. The artificial variable's start value `a` (and the
+    // parameter of the start phase's trace) is then dimensionless, of the
+    // order of one for any scale of the data, and the trace's tolerances
+    // (floors of one) act on it as on `L`; a uniform scaling of the data by
+    // `2^k` leaves the start phase's arithmetic unchanged but for the factor
+    let cmax = (0..n).fold(T::zero(), |m, i| {
+        m.max(covering.map_or(T::one(), |c| c[i]).abs())
+    });
+    let cunit = T::from_f64(crate::scaling::exp2i(
+        crate::scaling::exponent(scale.to_f64()) - crate::scaling::exponent(cmax.to_f64()),
+    ));
+    let c = |i: usize| covering.map_or(T::one(), |c| c[i]) * cunit;
     let tol = eng.tie_tol_value() * scale * T::from_f64(dim.max(1) as f64);
     // equality rows left to artificial variables (fixed at zero) that do not hold
     // at the start: their residual h is removed from the right-hand side at s = 0
@@ -1574,21 +1588,25 @@ pub(crate) fn start_phase<T: Scalar>(
         TraceEnd::Reached { driver, theta } => {
             eng.settle(driver, theta).map_err(ill)?;
             if eng.trace_pivots {
-                eprintln!("start phase end: basis {:?} x {:?}", eng.basis, (0..dim).map(|r| eng.x[r].to_f64()).collect::<Vec<_>>());
+                eprintln!(
+                    "start phase end: basis {:?} x {:?}",
+                    eng.basis,
+                    (0..dim).map(|r| eng.x[r].to_f64()).collect::<Vec<_>>()
+                );
             }
-            eng.reset_system(q.clone(), d.clone(), lambda0).map_err(ill)?;
+            eng.reset_system(q.clone(), d.clone(), lambda0)
+                .map_err(ill)?;
             if eng.trace_pivots {
-                eprintln!("after reset: x {:?}", (0..dim).map(|r| eng.x[r].to_f64()).collect::<Vec<_>>());
+                eprintln!(
+                    "after reset: x {:?}",
+                    (0..dim).map(|r| eng.x[r].to_f64()).collect::<Vec<_>>()
+                );
             }
             Ok(())
         }
-        TraceEnd::SecondaryRay { .. } | TraceEnd::UnboundedRay { .. } => Err(StartFailure {
-            status: Status::Infeasible,
-            message: format!(
-                "Lemke's method with the covering vector ended on a secondary ray at L = {:e}: no solution was found at the start value (for copositive-plus M this proves there is none)",
-                lambda0.to_f64()
-            ),
-        }),
+        TraceEnd::SecondaryRay { driver, col, .. } | TraceEnd::UnboundedRay { driver, col, .. } => {
+            Err(ray_evidence(eng, q, d, lambda0, driver, &col))
+        }
         TraceEnd::Stalled(m) => Err(StartFailure {
             status: Status::Infeasible,
             message: m,
@@ -1602,6 +1620,68 @@ pub(crate) fn start_phase<T: Scalar>(
             ),
         }),
         TraceEnd::IllConditioned(m) => Err(ill(m)),
+    }
+}
+
+/// What the start phase's ray at `lambda0` proves ([`crate::evidence`]):
+/// `infeasible` with the certificate when its direction is a Farkas
+/// certificate; `ill_conditioned` when `M`'s symmetric part is positive
+/// definite (a P-matrix: a solution exists, the ray is rounding's doing);
+/// otherwise `infeasible` saying that no solution was found and that this is
+/// not a proof that none exists.
+fn ray_evidence<T: Scalar>(
+    eng: &Engine<'_, T>,
+    q: &Col<T>,
+    d: &Col<T>,
+    lambda0: T,
+    driver: Var,
+    col: &Col<T>,
+) -> StartFailure {
+    use crate::path::Status;
+    let (p, n) = (eng.p, eng.n);
+    let at = lambda0.to_f64();
+    let head = format!(
+        "Lemke's method with the covering vector ended on a secondary ray at L = {at:e}: no solution was found at the start value"
+    );
+    if p > 0 {
+        return StartFailure {
+            status: Status::Infeasible,
+            message: format!(
+                "{head}; with free variables no certificate is checked, so this does not prove that none exists"
+            ),
+        };
+    }
+    // the ray's z part: the driver rises by one, basic variables by -col
+    let mut v = Col::<T>::zeros(n);
+    for (r, b) in eng.basis.iter().enumerate() {
+        if let Var::Z(i) = *b {
+            v[i] = -col[r];
+        }
+    }
+    if let Var::Z(i) = driver {
+        v[i] = T::one();
+    }
+    let r = Col::from_fn(n, |i| q[i] + lambda0 * d[i]);
+    if let Some(why) = crate::evidence::farkas(eng.m, &r, &v) {
+        return StartFailure {
+            status: Status::Infeasible,
+            message: format!("{head}; {why}"),
+        };
+    }
+    if crate::evidence::symmetric_part_positive_definite(eng.m) {
+        return StartFailure {
+            status: Status::IllConditioned,
+            message: format!(
+                "{head}, which cannot happen for this M in exact arithmetic: its symmetric part is positive definite, so M is a P-matrix and a solution exists; the ray is an artefact of rounding in {}: use a higher precision",
+                T::NAME
+            ),
+        };
+    }
+    StartFailure {
+        status: Status::Infeasible,
+        message: format!(
+            "{head}; this does not prove that none exists: the ray's direction is no certificate of infeasibility (v >= 0, M'v <= 0, (q + L0 d)'v < 0 fails), and M's class is not known (a copositive-plus M would give one)"
+        ),
     }
 }
 

@@ -44,17 +44,37 @@ pub struct Plcp<T: Scalar> {
     lambda_max: Option<T>,
 }
 
+/// One datum: finite, and zero or a normal number of `T` (a subnormal entry
+/// has lost digits, or is what an underflow left: [`PlcpError::Underflow`]).
+pub(crate) fn check_entry<T: Scalar>(
+    what: &str,
+    position: impl FnOnce() -> String,
+    v: T,
+) -> Result<(), PlcpError> {
+    if !v.is_finite() {
+        return Err(PlcpError::NonFinite {
+            what: what.into(),
+            position: position(),
+            value: v.to_f64(),
+        });
+    }
+    let x = v.to_f64().abs();
+    if v != T::zero() && x < T::min_normal() {
+        return Err(PlcpError::Underflow {
+            what: what.into(),
+            position: position(),
+            value: v.to_f64(),
+            precision: T::NAME.into(),
+            min_normal: T::min_normal(),
+        });
+    }
+    Ok(())
+}
+
 fn check_finite_mat<T: Scalar>(what: &str, a: MatRef<'_, T>) -> Result<(), PlcpError> {
     for j in 0..a.ncols() {
         for i in 0..a.nrows() {
-            let v = a[(i, j)];
-            if !v.is_finite() {
-                return Err(PlcpError::NonFinite {
-                    what: what.into(),
-                    position: format!("({i}, {j})"),
-                    value: v.to_f64(),
-                });
-            }
+            check_entry(what, || format!("({i}, {j})"), a[(i, j)])?;
         }
     }
     Ok(())
@@ -62,14 +82,7 @@ fn check_finite_mat<T: Scalar>(what: &str, a: MatRef<'_, T>) -> Result<(), PlcpE
 
 fn check_finite_col<T: Scalar>(what: &str, a: ColRef<'_, T>) -> Result<(), PlcpError> {
     for i in 0..a.nrows() {
-        let v = a[i];
-        if !v.is_finite() {
-            return Err(PlcpError::NonFinite {
-                what: what.into(),
-                position: format!("[{i}]"),
-                value: v.to_f64(),
-            });
-        }
+        check_entry(what, || format!("[{i}]"), a[i])?;
     }
     Ok(())
 }
@@ -265,7 +278,55 @@ impl<T: Scalar> Plcp<T> {
         self.lambda_max
     }
 
-    /// Converts the data to another precision (through `f64`).
+    /// Converts the data to another precision (through `f64`), checked like
+    /// the constructors: an entry that overflows `U`, or a nonzero entry that
+    /// becomes zero or subnormal in `U` ([`PlcpError::Underflow`]), is an
+    /// error naming it. Use this to narrow (`f64` to `f32`).
+    pub fn try_cast<U: Scalar>(&self) -> Result<Plcp<U>, PlcpError> {
+        let dim = self.dim();
+        let conv = |what: &str, pos: String, v: T| crate::io::convert::<U>(what, &pos, v.to_f64());
+        let q = (0..dim)
+            .map(|i| conv("q", format!("[{i}]"), self.q[i]))
+            .collect::<Result<Vec<U>, _>>()?;
+        let d = (0..dim)
+            .map(|i| conv("d", format!("[{i}]"), self.d[i]))
+            .collect::<Result<Vec<U>, _>>()?;
+        let (q, d) = (Col::from_fn(dim, |i| q[i]), Col::from_fn(dim, |i| d[i]));
+        let problem = match &self.m {
+            Storage::Dense(m) => {
+                let mut mu = Mat::<U>::zeros(dim, dim);
+                for j in 0..dim {
+                    for i in 0..dim {
+                        mu[(i, j)] = conv("M", format!("({i}, {j})"), m[(i, j)])?;
+                    }
+                }
+                Plcp::mixed(mu.as_ref(), q.as_ref(), d.as_ref(), self.free)?
+            }
+            Storage::Sparse { m, .. } => {
+                let mut trip = Vec::with_capacity(m.nnz());
+                for j in 0..dim {
+                    let (rows, vals) = m.col(j);
+                    for (&i, &v) in rows.iter().zip(vals) {
+                        trip.push((i, j, conv("M", format!("({i}, {j})"), v)?));
+                    }
+                }
+                let mu = Csc::try_from_triplets(dim, dim, &trip)?;
+                Plcp::mixed_sparse(mu, q.as_ref(), d.as_ref(), self.free)?
+            }
+        };
+        problem.with_range(
+            crate::io::convert::<U>("lambda0", "", self.lambda0.to_f64())?,
+            match self.lambda_max {
+                Some(l) => Some(crate::io::convert::<U>("lambda_max", "", l.to_f64())?),
+                None => None,
+            },
+        )
+    }
+
+    /// Converts the data to another precision (through `f64`) without checks:
+    /// for widening (`f32` or `f64` to `fx128`, `f32` to `f64`), where every
+    /// entry is exact. Narrowing may overflow or underflow an entry
+    /// silently: use [`Self::try_cast`] there.
     pub fn cast<U: Scalar>(&self) -> Plcp<U> {
         let dim = self.dim();
         let m = match &self.m {
@@ -317,7 +378,17 @@ impl<T: Scalar> Lcp<T> {
     pub fn q(&self) -> ColRef<'_, T> {
         self.q.as_ref()
     }
-    /// Converts the data to another precision (through `f64`).
+    /// Converts the data to another precision (through `f64`), checked like
+    /// [`Plcp::try_cast`].
+    pub fn try_cast<U: Scalar>(&self) -> Result<Lcp<U>, PlcpError> {
+        let n = self.n();
+        let zero = Col::<T>::zeros(n);
+        let p = Plcp::new(self.m(), self.q(), zero.as_ref())?.try_cast::<U>()?;
+        Lcp::new(p.m(), p.q())
+    }
+
+    /// Converts the data to another precision (through `f64`) without checks
+    /// (see [`Plcp::cast`]; [`Self::try_cast`] to narrow).
     pub fn cast<U: Scalar>(&self) -> Lcp<U> {
         let n = self.n();
         Lcp {

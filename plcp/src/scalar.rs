@@ -22,6 +22,11 @@ pub trait Scalar: RealField + Copy + Send + Sync + core::ops::Neg<Output = Self>
     /// Converts to `f64` (rounding for `fx128`).
     fn to_f64(self) -> f64;
 
+    /// The smallest positive normal number of the type (of its leading `f64`
+    /// for `fx128`): a nonzero datum below it is subnormal (digits lost) or
+    /// zero in this type, and the problem is rejected ([`crate::PlcpError::Underflow`]).
+    fn min_normal() -> f64;
+
     /// Converts to the wide type (exact).
     fn widen(self) -> Self::Wide;
 
@@ -123,6 +128,10 @@ impl Scalar for f32 {
     const NATIVE: bool = true;
     type Wide = f64;
     #[inline]
+    fn min_normal() -> f64 {
+        f32::MIN_POSITIVE as f64
+    }
+
     fn to_f64(self) -> f64 {
         self as f64
     }
@@ -145,6 +154,10 @@ impl Scalar for f64 {
     const NATIVE: bool = true;
     type Wide = faer::fx128;
     #[inline]
+    fn min_normal() -> f64 {
+        f64::MIN_POSITIVE
+    }
+
     fn to_f64(self) -> f64 {
         self
     }
@@ -185,6 +198,10 @@ impl Scalar for faer::fx128 {
     const NATIVE: bool = false;
     type Wide = faer::fx128;
     #[inline]
+    fn min_normal() -> f64 {
+        f64::MIN_POSITIVE
+    }
+
     fn to_f64(self) -> f64 {
         self.0 + self.1
     }

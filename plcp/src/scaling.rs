@@ -23,6 +23,15 @@
 //!
 //! Typical data (right-hand side within `2^40` of `M`, no row's below `2^-26`
 //! of the largest) keep exactly the scaling of Ruiz on `M`.
+//!
+//! Every step reads the data divided by `sigma = 2^e`, `e` the middle of the
+//! binary exponents of the largest and smallest nonzero `|M_ij|` (rounded up),
+//! and folds `sigma` into the row scales: data scaled as a whole by `2^k` reach
+//! the pivoting as the very same scaled problem (a bit-identical path, `z`
+//! equal and `w` times `2^k`); by `10^k`, as the same problem up to the
+//! rounding of the data. Ruiz's sweeps (square roots) are not equivariant by
+//! themselves. Data whose entries straddle one (`e = 0`, such as the frames
+//! systems) keep the scales they had before.
 
 use crate::matrix::MatrixRef;
 
@@ -60,6 +69,33 @@ const SMALL_RHS: f64 = 1.0 / 67_108_864.0;
 /// The power of two nearest `x` (one for a zero or non-finite `x`; exponent
 /// clamped to `+-1000`): scaling by it is exact. Also the column scales of the
 /// basis condition estimate ([`crate::basis`]).
+/// `floor(log2 x)` of a finite positive `x`, read from its bits (so that
+/// `exponent(2^k x) = k + exponent(x)` exactly, which a rounded `log2` does
+/// not guarantee); zero for zero or non-finite `x`.
+pub(crate) fn exponent(x: f64) -> i32 {
+    if !(x.is_finite() && x > 0.0) {
+        return 0;
+    }
+    // a subnormal is raised first (exactly) so that its exponent field is read
+    let (x, shift) = if x < f64::MIN_POSITIVE {
+        (x * exp2i(64), -64)
+    } else {
+        (x, 0)
+    };
+    ((x.to_bits() >> 52) & 0x7ff) as i32 - 1023 + shift
+}
+
+/// `2^e` exactly, for `e` in `[-1074, 1023]` (clamped: `2^-1074` is the
+/// smallest subnormal, which `powi` does not reach: it divides by `2^1074`).
+pub(crate) fn exp2i(e: i32) -> f64 {
+    let e = e.clamp(-1074, 1023);
+    if e >= -1022 {
+        f64::from_bits(((e + 1023) as u64) << 52)
+    } else {
+        f64::from_bits(1u64 << (e + 1074))
+    }
+}
+
 pub(crate) fn pow2(x: f64) -> f64 {
     if !(x.is_finite() && x > 0.0) {
         return 1.0;
@@ -82,26 +118,8 @@ impl Equilibration {
             MatrixRef::Dense(m) => Some(m),
             MatrixRef::Sparse(_) => None,
         };
-        let mut colbuf = vec![0.0f64; if dense.is_some() { dim } else { 0 }];
-        let abs_col = |j: usize, buf: &mut [f64]| {
-            if let Some(m) = dense {
-                for (b, v) in buf.iter_mut().zip(m.col(j).iter()) {
-                    *b = v.to_f64().abs();
-                }
-            }
-        };
-        let (a, rows): (Vec<f64>, Option<SparsePattern<'_>>) = match problem.matrix() {
-            MatrixRef::Dense(_) => (Vec::new(), None),
-            MatrixRef::Sparse(m) => {
-                let (col_ptr, row_idx, val) = m.parts();
-                (
-                    val.iter().map(|v| v.to_f64().abs()).collect(),
-                    Some((col_ptr, row_idx)),
-                )
-            }
-        };
         // the size of the right-hand side per row
-        let g: Vec<f64> = (0..dim)
+        let graw: Vec<f64> = (0..dim)
             .map(|i| {
                 let v = problem.q()[i]
                     .to_f64()
@@ -114,6 +132,59 @@ impl Equilibration {
                 }
             })
             .collect();
+        // the data's own scale, `sigma = 2^e`, `e` the middle of the binary
+        // exponents of the largest and smallest nonzero `|M_ij|`, rounded up (of the
+        // right-hand side if M is zero): everything below reads the data
+        // divided by sigma (exact), so that data scaled as a whole by `2^k`
+        // give the very same scaled problem, the factor going to the rows'
+        // scales (`z` is invariant, `w` scales with the data). Data whose
+        // entries straddle one (`e = 0`) keep the scales they had without it.
+        let (mmax, mmin) = {
+            let fold = |(hi, lo): (f64, f64), v: f64| {
+                let v = v.abs();
+                if v > 0.0 && v.is_finite() {
+                    (hi.max(v), lo.min(v))
+                } else {
+                    (hi, lo)
+                }
+            };
+            match problem.matrix() {
+                MatrixRef::Dense(m) => (0..dim).fold((0.0f64, f64::INFINITY), |acc, j| {
+                    m.col(j).iter().fold(acc, |acc, v| fold(acc, v.to_f64()))
+                }),
+                MatrixRef::Sparse(m) => m
+                    .parts()
+                    .2
+                    .iter()
+                    .fold((0.0f64, f64::INFINITY), |acc, v| fold(acc, v.to_f64())),
+            }
+        };
+        let gmax_raw = graw.iter().fold(0.0f64, |a, &b| a.max(b));
+        let e = if mmax > 0.0 {
+            (exponent(mmax) + exponent(mmin) + 1).div_euclid(2)
+        } else {
+            exponent(gmax_raw)
+        };
+        let inv_sigma = exp2i(-e);
+        let mut colbuf = vec![0.0f64; if dense.is_some() { dim } else { 0 }];
+        let abs_col = |j: usize, buf: &mut [f64]| {
+            if let Some(m) = dense {
+                for (b, v) in buf.iter_mut().zip(m.col(j).iter()) {
+                    *b = v.to_f64().abs() * inv_sigma;
+                }
+            }
+        };
+        let (a, rows): (Vec<f64>, Option<SparsePattern<'_>>) = match problem.matrix() {
+            MatrixRef::Dense(_) => (Vec::new(), None),
+            MatrixRef::Sparse(m) => {
+                let (col_ptr, row_idx, val) = m.parts();
+                (
+                    val.iter().map(|v| v.to_f64().abs() * inv_sigma).collect(),
+                    Some((col_ptr, row_idx)),
+                )
+            }
+        };
+        let g: Vec<f64> = graw.iter().map(|&v| v * inv_sigma).collect();
         let mut r = vec![1.0f64; dim];
         let mut c = vec![1.0f64; dim];
         let mut rmax = vec![0.0f64; dim];
@@ -178,11 +249,7 @@ impl Equilibration {
         // (a pass over M: only when the factor would apply)
         let huge = || {
             let big = 2f64.powi(900);
-            g.iter().any(|&v| v > big)
-                || match dense {
-                    Some(m) => (0..dim).any(|j| m.col(j).iter().any(|v| v.to_f64().abs() > big)),
-                    None => a.iter().any(|&v| v > big),
-                }
+            gmax_raw > big || mmax > big
         };
         // from below, the floors act once the data near the tolerances
         // (`1e3 eps`): in f32 that is already at 1e-4
@@ -208,7 +275,7 @@ impl Equilibration {
         if !(0..dim).any(|i| small(g[i] * r[i] * gamma)) {
             // no row to raise (typical data): the pass over M below is not needed
             return Self {
-                rows: r.into_iter().map(|v| pow2(v * gamma)).collect(),
+                rows: r.into_iter().map(|v| pow2(v * gamma) * inv_sigma).collect(),
                 cols: c.into_iter().map(|v| pow2(v / gamma)).collect(),
             };
         }
@@ -252,9 +319,10 @@ impl Equilibration {
                 }
             }
         }
-        // fold gamma into the rows and columns: R = gamma R', C = C' / gamma
+        // fold gamma into the rows and columns: R = gamma R', C = C' / gamma,
+        // and the data's scale into the rows
         Self {
-            rows: r.into_iter().map(|v| pow2(v * gamma)).collect(),
+            rows: r.into_iter().map(|v| pow2(v * gamma) * inv_sigma).collect(),
             cols: c.into_iter().map(|v| pow2(v / gamma)).collect(),
         }
     }

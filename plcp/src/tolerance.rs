@@ -21,6 +21,10 @@
 //! | residuals of points | reported ([`crate::residual::residual`]: start, end, `Path::at`, and every breakpoint for Lemke on a Schur reduction or on request, [`crate::residual::measure_path`]) | equation row `r` relative to `max(1, abs(q_r), abs(L d_r), abs(w_r), max_j abs(M_rj x_j))` |
 //! | residual guard | a path that claims success is downgraded to `ill_conditioned`; the trace stops as `ill_conditioned` at a breakpoint whose residual (after refinement) fails it | largest reported residual `> sqrt(eps)` |
 //! | reduction ties | Lemke on the Schur reduction of a mixed problem: the tie tolerance of the reduced path | `tie_tol_eps` times [`reduction_tie_factor`] (`cond(F)`, at least 1, and the product at most `sqrt(eps)`) |
+//! | covering vector | the start phase's covering vector `c` is brought by a power of two to the scale of the right-hand side, so the artificial variable is dimensionless | `c * 2^(e(max abs(q + L0 d)) - e(max c))`, `e` the binary exponent |
+//! | infeasibility certificate | the start phase's ray proves `infeasible` ([`crate::evidence`]) | `v >= -CERT_EPS eps n max v`; `(M'v)_j <= CERT_EPS eps n sum_i abs(M_ij v_i)`; `(q + L0 d)'v < -CERT_EPS eps n sum_i abs((q + L0 d)_i v_i)` ([`crate::evidence::CERT_EPS`] `= 1e3`) |
+//! | P-matrix check | a ray with `M`'s symmetric part positive definite is `ill_conditioned` | Cholesky of `(M + M')/2 - CERT_EPS n eps_64 max abs(M_ij) I` succeeds (orders up to [`crate::evidence::PD_CHECK_MAX_ORDER`]) |
+//! | underflow | a datum is rejected ([`crate::PlcpError::Underflow`]) | nonzero and below [`crate::Scalar::min_normal`] in the working type |
 //! | breakpoint re-intersection | Lemke on the Schur reduction: a breakpoint moves to where the polished segment's leaving variable is zero | only by `<= sqrt(eps) * max(1, abs(L))` |
 
 use crate::scalar::Scalar;

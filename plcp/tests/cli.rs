@@ -719,3 +719,38 @@ fn lcp_and_solve_outputs_share_one_reader() {
     assert!(t.breakpoints.is_empty() && t.segments.is_empty());
     assert_eq!(t.end.z.len(), 2);
 }
+
+/// Issue 14, defect 2: data scaled by 1e-150 read as f32 underflow to zero;
+/// the reader names the entry instead of tracing zeros to `reached`.
+#[test]
+fn f32_underflow_is_named() {
+    let file = scratch(
+        "underflow.json",
+        br#"{"M": [[2e-150, 1e-150], [1e-150, 2e-150]], "q": [-1e-150, 1e-150], "d": [-1e-150, -1e-150], "lambda_max": 3}"#,
+    );
+    let f = file.to_str().unwrap();
+    fails(
+        &["solve", f, "--precision", "f32"],
+        &[
+            "underflow.json",
+            "M entry (0, 0)",
+            "2e-150",
+            "f32",
+            "1.1754943508222875e-38",
+        ],
+    );
+    // the same file in f64 is traced
+    let r = run(&["solve", f, "--precision", "f64"]);
+    assert_eq!(r.code, 0, "{}", r.stderr);
+    let v: Value = serde_json::from_str(&r.stdout).unwrap();
+    assert_eq!(v["status"], "reached", "{}", r.stdout);
+    // an f64 datum subnormal in f64 itself
+    let file = scratch(
+        "subnormal.json",
+        br#"{"M": [[1.0, 0.0], [0.0, 1.0]], "q": [1.0, 1e-310], "d": [-1.0, -1.0]}"#,
+    );
+    fails(
+        &["solve", file.to_str().unwrap(), "--precision", "f64"],
+        &["q entry [1]", "1e-310", "f64"],
+    );
+}

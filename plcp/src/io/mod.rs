@@ -3,7 +3,9 @@
 //!
 //! Every reader parses numbers as `f64` and converts them to the working
 //! precision `T` afterwards. A value that is not finite, or that overflows `T`
-//! (say `1e300` read as `f32`), is an error that names the entry. Every error is
+//! (say `1e300` read as `f32`), or a nonzero value that underflows it (zero or
+//! subnormal in `T`: `1e-150` read as `f32`, or a subnormal `f64`), is an
+//! error that names the entry. Every error is
 //! a [`PlcpError`] whose `Display` is one line naming the file and, for syntax
 //! errors, the 1-based line and column.
 //!
@@ -119,6 +121,17 @@ pub(crate) fn convert<T: Scalar>(what: &str, position: &str, v: f64) -> Result<T
         return Err(PlcpError::Invalid {
             what: format!("{what} entry {position}"),
             why: format!("{v:e} overflows the working precision {}", T::NAME),
+        });
+    }
+    // a nonzero value that is zero or subnormal in T (or already subnormal
+    // in f64): named with the value as read
+    if v != 0.0 && (t == T::zero() || t.to_f64().abs() < T::min_normal()) {
+        return Err(PlcpError::Underflow {
+            what: what.into(),
+            position: position.into(),
+            value: v,
+            precision: T::NAME.into(),
+            min_normal: T::min_normal(),
         });
     }
     Ok(t)

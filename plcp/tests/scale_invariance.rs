@@ -1,0 +1,327 @@
+//! A uniform scaling of the data, `(s M, s q, s d)`, leaves the path in `L`
+//! and `z` unchanged and scales `w` by `s` (issue 14, defects 7 and 2).
+//!
+//! * The 20 x 20 P-matrix PLCP `M = B B'/n + I` with `q` of both signs (so the
+//!   start phase runs), scaled by `1e-30`, `1e-150`, `1e-12`, `1e30`,
+//!   `1e150`: the same events and breakpoints as unscaled (it was declared
+//!   `infeasible`, with a false proof, or stopped `ill_conditioned`).
+//! * Scaled by `2^k`: the path is bit-identical up to the factor (the
+//!   equilibration and the start phase follow the data's scale).
+//! * A property test over random P-matrix and monotone problems with
+//!   mixed-sign `q`, in f32, f64 and fx128, scaled by random powers of two
+//!   (bit-identical) and of ten (the same events, breakpoints to rounding).
+//! * `infeasible` is claimed as proven only with a checked certificate.
+//! * Data the working type cannot hold (underflow) are an error naming the entry.
+
+mod common;
+
+use common::{diag_dominant, monotone};
+use faer::{fx128, Col, Mat};
+use plcp::{Path, Plcp, PlcpError, Scalar, Settings, Status, Var};
+use proptest::prelude::*;
+use rand::{Rng, SeedableRng};
+use rand_chacha::ChaCha8Rng;
+
+type Data = (Mat<f64>, Col<f64>, Col<f64>);
+
+/// `M = B B'/n + I` (20 x 20, `B` uniform in `[-1, 1]`), `q` of both signs.
+fn pmatrix20() -> Data {
+    let n = 20;
+    let mut rng = ChaCha8Rng::seed_from_u64(14);
+    let b: Vec<f64> = (0..n * n).map(|_| rng.gen_range(-1.0..1.0)).collect();
+    let m = Mat::from_fn(n, n, |i, j| {
+        (0..n).map(|k| b[i * n + k] * b[j * n + k]).sum::<f64>() / n as f64
+            + if i == j { 1.0 } else { 0.0 }
+    });
+    let q = Col::from_fn(n, |_| rng.gen_range(-1.0..1.0));
+    let d = Col::from_fn(n, |_| rng.gen_range(-1.0..0.5));
+    assert!((0..n).any(|i| q[i] < 0.0) && (0..n).any(|i| q[i] > 0.0));
+    (m, q, d)
+}
+
+/// The data times `s` in precision `T` (`s` rounded to `T`, one product
+/// rounded in `T`: exact for a power of two, and in fx128 for any f64 `s`).
+fn scaled<T: Scalar>((m, q, d): &Data, s: f64) -> Plcp<T> {
+    let n = q.nrows();
+    let s = T::from_f64(s);
+    let m = Mat::<T>::from_fn(n, n, |i, j| T::from_f64(m[(i, j)]) * s);
+    let q = Col::<T>::from_fn(n, |i| T::from_f64(q[i]) * s);
+    let d = Col::<T>::from_fn(n, |i| T::from_f64(d[i]) * s);
+    Plcp::new(m.as_ref(), q.as_ref(), d.as_ref()).unwrap()
+}
+
+fn events<T: Scalar>(p: &Path<T>) -> Vec<(Var, Var)> {
+    p.breakpoints
+        .iter()
+        .map(|b| (b.entering, b.leaving))
+        .collect()
+}
+
+/// `path` (of data scaled by some `s`) against `base` (unscaled): same status,
+/// same events, breakpoints to `tol` relative; `Err` says what differs.
+fn same_path<T: Scalar>(path: &Path<T>, base: &Path<T>, tol: f64) -> Result<(), String> {
+    if path.status != base.status {
+        return Err(format!(
+            "status {} vs {}: {}",
+            path.status.as_str(),
+            base.status.as_str(),
+            path.message
+        ));
+    }
+    if events(path) != events(base) {
+        return Err(format!("events {:?} vs {:?}", events(path), events(base)));
+    }
+    for (a, b) in path.breakpoints.iter().zip(&base.breakpoints) {
+        let (a, b) = (a.lambda.to_f64(), b.lambda.to_f64());
+        if (a - b).abs() > tol * a.abs().max(b.abs()).max(1.0) {
+            return Err(format!("breakpoint {a} vs {b}"));
+        }
+    }
+    Ok(())
+}
+
+/// `path` (data scaled by `2^k`) is `base` bit for bit: breakpoints, `z`, and
+/// `w` times `2^k`, on every segment.
+fn bit_identical<T: Scalar>(path: &Path<T>, base: &Path<T>, factor: f64) -> Result<(), String> {
+    same_path(path, base, 0.0)?;
+    let f = T::from_f64(factor);
+    if path.segments.len() != base.segments.len() {
+        return Err("segment count".into());
+    }
+    for (k, (a, b)) in path.segments.iter().zip(&base.segments).enumerate() {
+        if a.lambda_from != b.lambda_from || a.basis != b.basis {
+            return Err(format!("segment {k}: start or basis"));
+        }
+        for i in 0..a.z_from.nrows() {
+            if a.z_from[i] != b.z_from[i] || a.dz[i] != b.dz[i] {
+                return Err(format!(
+                    "segment {k}: z[{i}] {:e} vs {:e}",
+                    a.z_from[i].to_f64(),
+                    b.z_from[i].to_f64()
+                ));
+            }
+            if a.w_from[i] != b.w_from[i] * f || a.dw[i] != b.dw[i] * f {
+                return Err(format!(
+                    "segment {k}: w[{i}] {:e} vs {:e} times the factor",
+                    a.w_from[i].to_f64(),
+                    b.w_from[i].to_f64()
+                ));
+            }
+        }
+    }
+    if path.info.start_pivots != base.info.start_pivots || path.info.pivots != base.info.pivots {
+        return Err("pivot counts".into());
+    }
+    Ok(())
+}
+
+fn solve<T: Scalar>(p: &Plcp<T>) -> Path<T> {
+    plcp::solve(p, &Settings::default()).unwrap()
+}
+
+#[test]
+fn pmatrix20_scaled_as_a_whole_keeps_its_path() {
+    let data = pmatrix20();
+    let base64 = solve(&scaled::<f64>(&data, 1.0));
+    let base128 = solve(&scaled::<fx128>(&data, 1.0));
+    assert_eq!(base64.status, Status::UnboundedRay, "{}", base64.message);
+    assert!(base64.info.start_pivots > 0, "the start phase runs");
+    assert_eq!(base64.breakpoints.len(), 9);
+    assert_eq!(events(&base64), events(&base128));
+    for (a, b) in base64.breakpoints.iter().zip(&base128.breakpoints) {
+        let (a, b) = (a.lambda, b.lambda.to_f64());
+        assert!((a - b).abs() <= 1e-13 * b.abs().max(1.0), "{a} vs {b}");
+    }
+    for s in [1e-30, 1e-150, 1e-12, 1e30, 1e150] {
+        let p64 = solve(&scaled::<f64>(&data, s));
+        same_path(&p64, &base64, 1e-12).unwrap_or_else(|e| panic!("f64, s = {s:e}: {e}"));
+        let p128 = solve(&scaled::<fx128>(&data, s));
+        same_path(&p128, &base128, 1e-12).unwrap_or_else(|e| panic!("fx128, s = {s:e}: {e}"));
+    }
+    let base32 = solve(&scaled::<f32>(&data, 1.0));
+    same_path(&base32, &base32, 0.0).unwrap();
+    for s in [1e-12, 1e-30, 1e12, 1e30] {
+        let p32 = solve(&scaled::<f32>(&data, s));
+        same_path(&p32, &base32, 1e-4).unwrap_or_else(|e| panic!("f32, s = {s:e}: {e}"));
+    }
+}
+
+#[test]
+fn pmatrix20_scaled_by_powers_of_two_is_bit_identical() {
+    let data = pmatrix20();
+    let base64 = solve(&scaled::<f64>(&data, 1.0));
+    let base128 = solve(&scaled::<fx128>(&data, 1.0));
+    let base32 = solve(&scaled::<f32>(&data, 1.0));
+    for k in [-1000, -500, -99, -40, -1, 1, 3, 40, 99, 500, 1000] {
+        let s = 2f64.powi(k);
+        bit_identical(&solve(&scaled::<f64>(&data, s)), &base64, s)
+            .unwrap_or_else(|e| panic!("f64, 2^{k}: {e}"));
+        if k.abs() <= 500 {
+            bit_identical(&solve(&scaled::<fx128>(&data, s)), &base128, s)
+                .unwrap_or_else(|e| panic!("fx128, 2^{k}: {e}"));
+        }
+        if k.abs() <= 99 {
+            bit_identical(&solve(&scaled::<f32>(&data, s)), &base32, s)
+                .unwrap_or_else(|e| panic!("f32, 2^{k}: {e}"));
+        }
+    }
+}
+
+// ------------------------------------------------------------ property test
+
+/// A random problem: a diagonally dominant P-matrix or a positive definite
+/// `B B' + S + I/8` (dyadic entries), `q` with at least one entry of each sign.
+fn mixed_sign() -> impl Strategy<Value = Data> {
+    (2usize..=8).prop_flat_map(|n| {
+        (
+            prop::collection::vec(-16i32..=16, n * n),
+            prop::collection::vec(-8i32..=8, n * n),
+            prop::collection::vec(1i32..=16, n),
+            any::<bool>(),
+            prop::collection::vec(1i32..=64, n),
+            prop::collection::vec(any::<bool>(), n),
+            prop::collection::vec(-64i32..=64, n),
+        )
+            .prop_map(move |(off, s, margin, dominant, qa, qs, d)| {
+                let m = if dominant {
+                    let off: Vec<f64> = off.iter().map(|&k| k as f64 / 16.0).collect();
+                    let margin: Vec<f64> = margin.iter().map(|&k| k as f64 / 8.0).collect();
+                    diag_dominant(&off, &margin, n)
+                } else {
+                    let b: Vec<f64> = off.iter().map(|&k| k as f64 / 16.0).collect();
+                    let s: Vec<f64> = s.iter().map(|&k| k as f64 / 8.0).collect();
+                    monotone(&b, n, n, &s, 0.125)
+                };
+                // signs: as drawn, but the first two rows one of each
+                let q = Col::from_fn(n, |i| {
+                    let neg = if i < 2 { i == 0 } else { qs[i] };
+                    qa[i] as f64 / 64.0 * if neg { -1.0 } else { 1.0 }
+                });
+                let d = Col::from_fn(n, |i| d[i] as f64 / 64.0);
+                (m, q, d)
+            })
+    })
+}
+
+/// The property in precision `T`: `2^k` bit-identical, `10^j` the same path to `tol`.
+fn invariant<T: Scalar>(data: &Data, k: i32, j: i32, tol: f64) -> Result<(), TestCaseError> {
+    let base = solve(&scaled::<T>(data, 1.0));
+    let s = 2f64.powi(k);
+    bit_identical(&solve(&scaled::<T>(data, s)), &base, s)
+        .map_err(|e| TestCaseError::fail(format!("{}: 2^{k}: {e}", T::NAME)))?;
+    let s = 10f64.powi(j);
+    same_path(&solve(&scaled::<T>(data, s)), &base, tol)
+        .map_err(|e| TestCaseError::fail(format!("{}: 10^{j}: {e}", T::NAME)))
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 200, failure_persistence: None, ..ProptestConfig::default() })]
+
+    #[test]
+    fn f64_uniform_scaling_keeps_the_path(data in mixed_sign(), k in -900i32..=900, j in -250i32..=250) {
+        invariant::<f64>(&data, k, j, 1e-10)?;
+    }
+
+    #[test]
+    fn f128_uniform_scaling_keeps_the_path(data in mixed_sign(), k in -450i32..=450, j in -130i32..=130) {
+        invariant::<fx128>(&data, k, j, 1e-24)?;
+    }
+
+    #[test]
+    fn f32_uniform_scaling_keeps_the_path(data in mixed_sign(), k in -100i32..=100, j in -30i32..=30) {
+        invariant::<f32>(&data, k, j, 1e-3)?;
+    }
+}
+
+// ------------------------------------------------------------ infeasible
+
+/// `M = [[0, -1], [1, 0]]` (skew: copositive-plus), `q = (-1, -1)`: `w0 = -1
+/// - z1 < 0` for every `z >= 0`. The start phase ends on a ray whose direction
+/// is a Farkas certificate: `infeasible`, said to be proven, at every scale.
+#[test]
+fn infeasible_is_proven_with_a_certificate() {
+    let m = faer::mat![[0.0, -1.0], [1.0, 0.0]];
+    let q = faer::col![-1.0, -1.0];
+    let d = faer::col![0.0, 0.0];
+    for s in [1.0, 1e-150, 1e150] {
+        let path = solve(&scaled::<f64>(&(m.clone(), q.clone(), d.clone()), s));
+        assert_eq!(path.status, Status::Infeasible, "{s:e}: {}", path.message);
+        assert!(
+            path.message.contains("Farkas certificate"),
+            "{}",
+            path.message
+        );
+    }
+}
+
+/// `M = [[-1, 2], [2, -1]]` (not copositive), `q = (-1, -1)`: `z = (1, 1)`,
+/// `w = 0` solves it, but Lemke's method with the covering vector ends on a
+/// ray. The status says no solution was found, and the message must not claim
+/// that none exists (it claimed a proof "for copositive-plus M" before).
+#[test]
+fn no_false_proof_of_infeasibility() {
+    let m = faer::mat![[-1.0, 2.0], [2.0, -1.0]];
+    let q = faer::col![-1.0, -1.0];
+    let d = faer::col![0.0, 0.0];
+    // a solution exists
+    let (z0, z1) = (1.0, 1.0);
+    assert_eq!(q[0] + m[(0, 0)] * z0 + m[(0, 1)] * z1, 0.0);
+    assert_eq!(q[1] + m[(1, 0)] * z0 + m[(1, 1)] * z1, 0.0);
+    let p = Plcp::new(m.as_ref(), q.as_ref(), d.as_ref()).unwrap();
+    let path = solve(&p);
+    assert_eq!(path.status, Status::Infeasible, "{}", path.message);
+    assert!(path.message.contains("does not prove"), "{}", path.message);
+    assert!(!path.message.contains("proves"), "{}", path.message);
+}
+
+// ------------------------------------------------------------ underflow
+
+/// Issue 14, defect 2: the data scaled by 1e-150 cannot be held by f32; the
+/// library's conversion names the entry (the constructors reject subnormal
+/// data of the working type itself).
+#[test]
+fn f32_underflow_is_an_error_naming_the_entry() {
+    let data = pmatrix20();
+    let p64 = scaled::<f64>(&data, 1e-150);
+    match p64.try_cast::<f32>() {
+        Err(PlcpError::Underflow {
+            what,
+            position,
+            precision,
+            min_normal,
+            ..
+        }) => {
+            assert_eq!((what.as_str(), position.as_str()), ("q", "[0]"));
+            assert_eq!(precision, "f32");
+            assert_eq!(min_normal, f32::MIN_POSITIVE as f64);
+        }
+        other => panic!("expected an underflow error, got {other:?}"),
+    }
+    // the same data in f64 are held, and traced as the unscaled data
+    assert!(p64.try_cast::<f64>().is_ok());
+    // a subnormal entry of the working type itself, in each constructor
+    let tiny32 = f32::MIN_POSITIVE / 4.0;
+    let m = faer::mat![[1.0f32, tiny32], [0.0, 1.0]];
+    let q = faer::col![1.0f32, -1.0];
+    let d = faer::col![0.0f32, 0.0];
+    let e = Plcp::new(m.as_ref(), q.as_ref(), d.as_ref()).unwrap_err();
+    assert!(
+        matches!(&e, PlcpError::Underflow { what, position, .. } if what == "M" && position == "(0, 1)"),
+        "{e}"
+    );
+    let e = plcp::Lcp::new(m.as_ref(), q.as_ref()).unwrap_err();
+    assert!(matches!(e, PlcpError::Underflow { .. }), "{e}");
+    let e = plcp::matrix::Csc::try_from_triplets(2, 2, &[(0, 1, 1e-310f64)]).unwrap_err();
+    assert!(
+        e.to_string().contains("1e-310") && e.to_string().contains("f64"),
+        "{e}"
+    );
+    let q64 = faer::col![1.0f64, 1e-310];
+    let e = Plcp::new(
+        Mat::<f64>::identity(2, 2).as_ref(),
+        q64.as_ref(),
+        faer::col![0.0f64, 0.0].as_ref(),
+    )
+    .unwrap_err();
+    assert!(e.to_string().contains("q entry [1]"), "{e}");
+}
