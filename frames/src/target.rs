@@ -93,8 +93,22 @@ pub struct Arrival {
     pub after_deactivation: bool,
 }
 
+impl Target {
+    /// The displacement (or velocity) of the target's node along its
+    /// direction, from a vector over the system's kept coordinates.
+    pub fn project(&self, system: &System, q: &[f64]) -> f64 {
+        system
+            .coordinates
+            .iter()
+            .zip(q)
+            .filter(|(c, _)| c.node == self.node)
+            .map(|(c, v)| v * along(&self.direction, c.component))
+            .sum()
+    }
+}
+
 /// The direction's component along a generalised coordinate's axis (zero for rotations).
-fn along(direction: &[f64; 3], c: Component) -> f64 {
+pub fn along(direction: &[f64; 3], c: Component) -> f64 {
     match c {
         Component::X => direction[0],
         Component::Y => direction[1],
