@@ -6,6 +6,7 @@ use crate::hinge::{self, Reading};
 use crate::model::Scene;
 use crate::response::{self, Response};
 use crate::solve::{self, Solution, SolveOptions};
+use crate::target::{self, Arrival};
 use crate::timestep::{Continuation, StepOptions};
 
 /// Options of an analysis.
@@ -51,6 +52,8 @@ pub struct Analysis {
     pub reading: Reading,
     /// Accelerations, moments, time response.
     pub response: Response,
+    /// The first arrival at each of the scene's `[[target]]`s, in scene order.
+    pub targets: Vec<Arrival>,
     /// Set when the path was re-solved in a higher precision, and why.
     pub note: Option<String>,
     /// The response by time stepping beyond the path's first deactivation,
@@ -148,7 +151,16 @@ impl Analysis {
             &scene.history,
             &times,
         );
+        let first_deactivation = reading.deactivations().first().map(|d| d.0);
+        let targets = target::arrivals(
+            &system,
+            &response,
+            &scene.history,
+            first_deactivation,
+            &scene.targets,
+        );
         Ok(Analysis {
+            targets,
             scene,
             system,
             options: options.clone(),

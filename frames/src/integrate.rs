@@ -83,7 +83,7 @@ pub(crate) fn g3(x: f64) -> f64 {
 
 /// First and second integrals of `lambda` over `[ta, ta + tau]`, the history
 /// having no knot inside.
-fn integrals(history: &History, ta: f64, tau: f64) -> (f64, f64) {
+pub(crate) fn integrals(history: &History, ta: f64, tau: f64) -> (f64, f64) {
     let la = history.lambda(ta);
     match history {
         History::Saturating { peak, tau: tc } => {

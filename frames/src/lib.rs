@@ -71,6 +71,7 @@ pub mod report;
 pub mod response;
 pub mod solve;
 pub mod stress;
+pub mod target;
 pub mod timestep;
 pub mod yield_surface;
 

@@ -52,6 +52,11 @@
 //! to = "C"                # optional: a [[node]] at the end point, else "Q.8"
 //! plastic_moment = 1.0    # and plastic_torque / plastic_axial / facets / mass_per_length as a member
 //!
+//! [[target]]              # optional, any number: report when a gap first closes
+//! node = "B"
+//! direction = [0.0, -1.0, 0.0]  # [dx, dy, dz], normalised; planar: dz = 0, grillage: dx = dy = 0
+//! gap = 0.1               # positive: the displacement along direction to reach
+//!
 //! [history]               # lambda(t); default: ramp with rate 1
 //! kind = "ramp"
 //! rate = 1.0
@@ -115,6 +120,7 @@
 //! ```
 
 use crate::error::FramesError;
+use crate::target::Target;
 use crate::yield_surface::{Curve, Polygon};
 use serde::de::IgnoredAny;
 use serde::Deserialize;
@@ -345,6 +351,8 @@ pub struct Scene {
     pub(crate) load_lines: HashMap<(usize, usize), usize>,
     /// Line of each `[[node]]` entry.
     pub(crate) node_lines: HashMap<usize, usize>,
+    /// The `[[target]]`s: gaps whose first closing is reported ([`crate::target`]).
+    pub targets: Vec<Target>,
 }
 
 #[derive(Deserialize)]
@@ -367,6 +375,19 @@ struct RawScene {
     #[serde(default)]
     load: Vec<Spanned<RawLoad>>,
     history: Option<Spanned<RawHistory>>,
+    /// An annotation (any TOML value), read and ignored.
+    #[serde(default, rename = "comment")]
+    _comment: Option<IgnoredAny>,
+    #[serde(default)]
+    target: Vec<Spanned<RawTarget>>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawTarget {
+    node: Spanned<String>,
+    direction: Spanned<Vec<f64>>,
+    gap: Spanned<f64>,
     /// An annotation (any TOML value), read and ignored.
     #[serde(default, rename = "comment")]
     _comment: Option<IgnoredAny>,
@@ -1172,6 +1193,12 @@ impl Scene {
             None => History::default(),
             Some(h) => parse_history(&cx, h)?,
         };
+        let mut targets = Vec::with_capacity(raw.target.len());
+        for t in &raw.target {
+            let t = t.get_ref();
+            let node = node_ref(&t.node, "target")?;
+            targets.push(parse_target(&cx, model, &frame.nodes[node].id, node, t)?);
+        }
         if frame.members.is_empty() {
             return cx.err(0..0, "member", "the scene has no [[member]]");
         }
@@ -1181,6 +1208,7 @@ impl Scene {
             history,
             load_lines,
             node_lines,
+            targets,
         };
         scene.check_mechanics()?;
         Ok(scene)
@@ -1232,6 +1260,58 @@ impl Scene {
         }
         Ok(())
     }
+}
+
+/// A `[[target]]`: the node, its direction made a unit vector (in the
+/// model's translations: `dz = 0` in a planar scene, `dx = dy = 0` in a
+/// grillage, where the other translations are not unknowns), a positive gap.
+fn parse_target(
+    cx: &Ctx<'_>,
+    model: Model,
+    nid: &str,
+    node: usize,
+    t: &RawTarget,
+) -> Result<Target, FramesError> {
+    let key = |k: &str| format!("target \"{nid}\" {k}");
+    let d = t.direction.get_ref();
+    if d.len() != 3 || d.iter().any(|v| !v.is_finite() || v.abs() > 1e100) {
+        return cx.err(
+            t.direction.span(),
+            key("direction"),
+            format!("must be three finite numbers [dx, dy, dz], got {d:?}"),
+        );
+    }
+    let (zero, which) = match model {
+        Model::Planar => (
+            &[2usize][..],
+            "dz must be 0 in a planar scene (nodes move in x and y)",
+        ),
+        Model::Grillage => (
+            &[0usize, 1][..],
+            "dx and dy must be 0 in a grillage (nodes move in z only)",
+        ),
+    };
+    if zero.iter().any(|&k| d[k] != 0.0) {
+        return cx.err(
+            t.direction.span(),
+            key("direction"),
+            format!("{which}, got {d:?}"),
+        );
+    }
+    let norm = d.iter().map(|v| v * v).sum::<f64>().sqrt();
+    if !(norm > 0.0 && norm.is_finite()) {
+        return cx.err(
+            t.direction.span(),
+            key("direction"),
+            format!("must not be zero, got {d:?}"),
+        );
+    }
+    let gap = cx.positive(&t.gap, key("gap"))?;
+    Ok(Target {
+        node,
+        direction: [d[0] / norm, d[1] / norm, d[2] / norm],
+        gap,
+    })
 }
 
 fn parse_history(cx: &Ctx<'_>, h: &Spanned<RawHistory>) -> Result<History, FramesError> {
@@ -1520,7 +1600,7 @@ fy = -1.0
     }
 
     /// Every table of the contract, each header followed by its keys.
-    const EVERY_TABLE: [(&str, &str); 10] = [
+    const EVERY_TABLE: [(&str, &str); 11] = [
         ("", "title = \"every table\"\nmodel = \"planar\"\n"),
         ("[yield]", "facets = 8\n"),
         ("[[node]]", "id = \"A\"\nx = 1.0\ny = 0.0\n"),
@@ -1537,6 +1617,7 @@ fy = -1.0
         ("[[mass]]", "node = \"C\"\nm = 1.0\nj = 0.5\n"),
         ("[[load]]", "node = \"C\"\nfy = 1.0\n"),
         ("[history]", "kind = \"ramp\"\nrate = 2.0\n"),
+        ("[[target]]", "node = \"C\"\ndirection = [1.0, 0.0, 0.0]\ngap = 0.5\n"),
     ];
 
     /// The scene with `extra` (a line) right after the header of table `at`.

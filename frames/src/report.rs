@@ -424,6 +424,7 @@ impl Analysis {
             "hinges": hinges,
             "intervals": intervals,
             "moments_at_breakpoints": moments,
+            "targets": self.targets_json(),
             "response": {
                 "history": t.history.describe(),
                 "method": t.method,
@@ -829,7 +830,71 @@ impl Analysis {
                 fr.nodes[far.0].id,
             );
         }
+        if !self.targets.is_empty() {
+            let _ = writeln!(s);
+            let _ = writeln!(s, "targets (first time the gap closes; velocity along the direction; kinetic energy of the whole structure)");
+            for a in &self.targets {
+                let tg = &a.target;
+                let head = format!(
+                    "  {} along [{}, {}, {}], gap {}:",
+                    fr.nodes[tg.node].id,
+                    fmt_g(tg.direction[0]),
+                    fmt_g(tg.direction[1]),
+                    fmt_g(tg.direction[2]),
+                    fmt_g(tg.gap)
+                );
+                match (a.time, a.lambda, a.velocity, a.kinetic_energy) {
+                    (Some(t), Some(l), Some(v), Some(e)) => {
+                        let _ = writeln!(
+                            s,
+                            "{head} reached at t = {} (lambda = {}), velocity {}, kinetic energy {}{}",
+                            fmt_g(t),
+                            fmt_g(l),
+                            fmt_g(v),
+                            fmt_g(e),
+                            if a.after_deactivation {
+                                "  [after a deactivation: the path's response is not valid there]"
+                            } else {
+                                ""
+                            }
+                        );
+                    }
+                    _ => {
+                        let _ = writeln!(
+                            s,
+                            "{head} not reached by t = {} (the analysed range)",
+                            fmt_g(a.t_end)
+                        );
+                    }
+                }
+            }
+        }
         s
+    }
+
+    /// The `targets` of the JSON report: one object per `[[target]]`.
+    fn targets_json(&self) -> Value {
+        let fr = &self.scene.frame;
+        Value::Array(
+            self.targets
+                .iter()
+                .map(|a| {
+                    let opt = |x: Option<f64>| x.map(num).unwrap_or(Value::Null);
+                    json!({
+                        "node": fr.nodes[a.target.node].id,
+                        "direction": a.target.direction,
+                        "gap": num(a.target.gap),
+                        "reached": a.reached,
+                        "time": opt(a.time),
+                        "lambda": opt(a.lambda),
+                        "velocity": opt(a.velocity),
+                        "kinetic_energy": opt(a.kinetic_energy),
+                        "t_end": num(a.t_end),
+                        "after_deactivation": a.after_deactivation,
+                    })
+                })
+                .collect(),
+        )
     }
 }
 
