@@ -50,7 +50,8 @@ impl<T: Scalar> LcpSolution<T> {
     /// assert_eq!(path.status, plcp::Status::Reached);
     /// assert!(path.breakpoints.is_empty() && path.segments.is_empty());
     /// assert_eq!((path.lambda0, path.lambda_max, path.lambda_reached), (0.0, Some(0.0), 0.0));
-    /// assert!((path.at(0.0).unwrap().z[1] - 7.0 / 3.0).abs() < 1e-12);
+    /// let z1: f64 = path.at(0.0).unwrap().z[1];
+    /// assert!((z1 - 7.0 / 3.0).abs() < 1e-12);
     /// ```
     pub fn as_path(&self) -> Path<T> {
         Path {
