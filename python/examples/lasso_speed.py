@@ -35,11 +35,14 @@ def problem(n, p, seed=0):
 
 
 def best_of(repeat, f):
+    """The shortest of `repeat` runs, with that run's output."""
     best, out = np.inf, None
     for _ in range(repeat):
         t0 = time.perf_counter()
-        out = f()
-        best = min(best, time.perf_counter() - t0)
+        o = f()
+        t = time.perf_counter() - t0
+        if t < best:
+            best, out = t, o
     return best, out
 
 
