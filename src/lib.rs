@@ -2,7 +2,10 @@
 //!
 //! It also holds the seeded random instance generators shared by the benches
 //! and the report programs, so that a number in a report can be reproduced
-//! from `(n, seed)` alone.
+//! from `(n, seed)` alone, and the formulations of the everyday parametric
+//! paths (LASSO, efficient frontier, parametric QP) in [`everyday`].
+
+pub mod everyday;
 
 pub mod random {
     //! Seeded random PLCPs.
@@ -33,7 +36,7 @@ pub mod random {
 
     /// A standard normal sample (Box-Muller; `rand` 0.8 has no normal distribution
     /// without `rand_distr`).
-    fn gaussian(rng: &mut ChaCha8Rng) -> f64 {
+    pub(crate) fn gaussian(rng: &mut ChaCha8Rng) -> f64 {
         let u1: f64 = 1.0 - rng.gen::<f64>(); // in (0, 1]
         let u2: f64 = rng.gen::<f64>();
         (-2.0 * u1.ln()).sqrt() * (2.0 * std::f64::consts::PI * u2).cos()

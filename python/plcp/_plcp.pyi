@@ -1,0 +1,109 @@
+"""Type stubs of the native module plcp._plcp (the package's contract)."""
+
+from typing import Optional
+
+import numpy as np
+import numpy.typing as npt
+
+_F64 = npt.NDArray[np.float64]
+_I64 = npt.NDArray[np.int64]
+
+class Point:
+    """The solution at one value of L."""
+
+    @property
+    def lambda_(self) -> float: ...
+    @property
+    def z(self) -> _F64: ...
+    @property
+    def w(self) -> _F64: ...
+    @property
+    def u(self) -> _F64: ...
+
+class Segment:
+    """One piece of the path: x(L) = x_from + (L - lambda_from) dx for x in z, w, u."""
+
+    @property
+    def lambda_from(self) -> float: ...
+    @property
+    def lambda_to(self) -> float: ...
+    @property
+    def unbounded(self) -> bool: ...
+    @property
+    def basis(self) -> list[str]: ...
+    @property
+    def z_from(self) -> _F64: ...
+    @property
+    def dz(self) -> _F64: ...
+    @property
+    def w_from(self) -> _F64: ...
+    @property
+    def dw(self) -> _F64: ...
+    @property
+    def u_from(self) -> _F64: ...
+    @property
+    def du(self) -> _F64: ...
+
+class Path:
+    """The solution path of a PLCP, kept in its working precision."""
+
+    @property
+    def status(self) -> str: ...
+    @property
+    def success(self) -> bool: ...
+    @property
+    def message(self) -> str: ...
+    @property
+    def lambda0(self) -> float: ...
+    @property
+    def lambda_reached(self) -> float: ...
+    @property
+    def breakpoints(self) -> _F64: ...
+    @property
+    def events(self) -> list[tuple[str, str]]: ...
+    @property
+    def segments(self) -> list[Segment]: ...
+    @property
+    def end(self) -> Point: ...
+    def at(self, lambda_: float) -> Optional[Point]: ...
+    @property
+    def info(self) -> dict[str, object]: ...
+
+class LcpSolution:
+    """The solution of a plain LCP w = q + M z."""
+
+    @property
+    def status(self) -> str: ...
+    @property
+    def z(self) -> _F64: ...
+    @property
+    def w(self) -> _F64: ...
+    @property
+    def message(self) -> str: ...
+    @property
+    def info(self) -> dict[str, object]: ...
+
+def solve_dense(
+    m: _F64,
+    q: _F64,
+    d: _F64,
+    lambda_max: Optional[float],
+    lambda0: float,
+    free: int,
+    method: str,
+    precision: str,
+) -> Path: ...
+def solve_sparse(
+    shape: tuple[int, int],
+    rows: _I64,
+    cols: _I64,
+    vals: _F64,
+    q: _F64,
+    d: _F64,
+    lambda_max: Optional[float],
+    lambda0: float,
+    free: int,
+    method: str,
+    precision: str,
+) -> Path: ...
+def solve_lcp_dense(m: _F64, q: _F64, precision: str) -> LcpSolution: ...
