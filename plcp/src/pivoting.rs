@@ -516,8 +516,23 @@ impl<'a, T: Scalar> Engine<'a, T> {
                         })
                         .collect(),
                     None => {
+                        // entries of B^{-1} e_k at its rounding level (the
+                        // pivot tolerance's noise, relative to the column) are
+                        // zeros of the exact inverse: compared as such, else
+                        // rounding decides where the exact rule looks further
+                        // (tobenna: 29 tied rows whose entries in a column are
+                        // all exact zeros, computed as 1e-18 of noise)
                         let inv_k = self.factor.unit(k);
-                        tied.iter().map(|&r| inv_k[r] / col[r]).collect()
+                        let zero = self.noise * col_max_abs(&inv_k);
+                        tied.iter()
+                            .map(|&r| {
+                                if inv_k[r].abs() <= zero {
+                                    T::zero()
+                                } else {
+                                    inv_k[r] / col[r]
+                                }
+                            })
+                            .collect()
                     }
                 };
                 let vmin = vals.iter().fold(vals[0], |a, &b| a.min(b));
