@@ -466,12 +466,23 @@ impl<'a, T: Scalar> Engine<'a, T> {
         if colmax == T::zero() {
             return None;
         }
-        let ptol = self.noise * colmax;
+        // the pivot tolerance of the candidates is relative to the entries of
+        // the sign-constrained rows (z, w): a basic L's entry is the rate of
+        // the parameter and a free variable's is in its own units; where they
+        // are large per unit of the driver (L at 1e9, u at 8e4 in the stiffest
+        // frame, issue 14 defect 5) they made an accurate entry of 1e-3 at the
+        // blocking row look like rounding, and the path ran past the event
+        let compmax = (0..self.dim)
+            .filter(|&r| is_comp(self.basis[r]))
+            .fold(T::zero(), |a, r| a.max(col[r].abs()));
+        let ptol = self.noise * compmax;
+        // (artificial rows, below, keep the whole column's scale)
+        let ptol_all = self.noise * colmax;
         // artificial variables are fixed at zero: any move blocks them
         let mut art: Option<usize> = None;
         for r in 0..self.dim {
             if matches!(self.basis[r], Var::Artificial(_))
-                && col[r].abs() > ptol
+                && col[r].abs() > ptol_all
                 && art.is_none_or(|a| col[r].abs() > col[a].abs())
             {
                 art = Some(r);

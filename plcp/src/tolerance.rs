@@ -21,9 +21,22 @@
 //! | residuals of points | reported ([`crate::residual::residual`]: start, end, `Path::at`, and every breakpoint for Lemke on a Schur reduction or on request, [`crate::residual::measure_path`]) | equation row `r` relative to `max(1, abs(q_r), abs(L d_r), abs(w_r), max_j abs(M_rj x_j))` |
 //! | residual guard | a path that claims success is downgraded to `ill_conditioned`; the trace stops as `ill_conditioned` at a breakpoint whose residual (after refinement) fails it | largest reported residual `> sqrt(eps)` |
 //! | reduction ties | Lemke on the Schur reduction of a mixed problem: the tie tolerance of the reduced path | `tie_tol_eps` times [`reduction_tie_factor`] (`cond(F)`, at least 1, and the product at most `sqrt(eps)`) |
+//! | doubtful success | with `Settings::escalate`, a path that ends `reached`, `unbounded_ray` or `secondary_ray` in `f32`/`f64` on a basis whose condition estimate times `eps` exceeded [`ESCALATE_COND_EPS`] (`1e-5`: fewer than about five digits left) is continued in `fx128` like an `ill_conditioned` one |
+//! | restart check | an `fx128` warm restart inside segment `k` must be feasible back to the segment's start `L_k` (else events lie between: the basis is not the path's there) | `z, w >= -tie_tol_eps * eps * max(1, abs(x))` at `L_k` |
 //! | breakpoint re-intersection | Lemke on the Schur reduction: a breakpoint moves to where the polished segment's leaving variable is zero | only by `<= sqrt(eps) * max(1, abs(L))` |
 
 use crate::scalar::Scalar;
+
+/// With [`crate::Settings::escalate`], a path in `f32`/`f64` that claims an
+/// end (`reached`, a ray) on a basis with `cond * eps` above this is checked
+/// in `fx128` ([`crate::escalate`]): its breakpoints carry relative errors of
+/// about `cond * eps`, and a column entry below that level is lost to
+/// cancellation, which turns a blocking row into a false ray (the stiffest
+/// frame of issue 14: `cond = 2.8e13` in f64, the event at `L = 1.02e16`
+/// lost and the last segment claimed unbounded, residual `1.2e-8` just below
+/// the residual guard's `sqrt(eps)`). Above the `1000`-element cantilever's
+/// `cond * eps = 8.8e-7` (traced right in f64), so that stays in f64.
+pub const ESCALATE_COND_EPS: f64 = 1e-5;
 
 /// Entries of a row of `B^{-1}` (sparse basis, lexicographic rule) below this
 /// many `eps` times the row's largest entry are rounding noise, zeros of the
