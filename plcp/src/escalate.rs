@@ -262,7 +262,7 @@ pub(crate) fn continue_in_fx128<T: Scalar>(
         // the true path has events between L_k and the restart point, which
         // the splice would lose (the working precision had already missed one
         // inside segment k)
-        feasible_back_to(&rest, fx128::from_f64(seg.lambda_from.to_f64()))?;
+        feasible_back_to::<T>(&rest, fx128::from_f64(seg.lambda_from.to_f64()))?;
         Ok(rest)
     };
     // the segment the trouble arose in may itself start where the working
@@ -319,30 +319,32 @@ pub(crate) fn continue_in_fx128<T: Scalar>(
 }
 
 /// `Ok` if the first segment of `rest`, extended back to `lambda` (its basis,
-/// its affine solution), has `z, w >= 0` there up to rounding
-/// (`tie_tol_eps`-free: `1e3 eps` of the values' scale, see
-/// [`crate::tolerance`]); else why not.
-fn feasible_back_to(rest: &Path<fx128>, lambda: fx128) -> Result<(), String> {
+/// its affine solution), has `z, w >= 0` there, up to what the working
+/// precision's breakpoint `lambda` can be off by: a variable negative at
+/// `lambda` must reach zero within `sqrt(eps) * max(1, |lambda|, segment)`
+/// of it (`eps` of `T`); else an event lies between `lambda` and the restart
+/// point, and why is returned.
+fn feasible_back_to<T: Scalar>(rest: &Path<fx128>, lambda: fx128) -> Result<(), String> {
     let Some(s) = rest.segments.first() else {
         return Ok(());
     };
     let back = lambda - s.lambda_from;
-    let at = |from: &Col<fx128>, slope: &Col<fx128>, i: usize| from[i] + slope[i] * back;
-    let mut scale = fx128::from_f64(1.0);
-    for (from, slope) in [(&s.z_from, &s.dz), (&s.w_from, &s.dw)] {
-        for i in 0..from.nrows() {
-            scale = scale.max(at(from, slope, i).abs()).max(from[i].abs());
-        }
-    }
-    let tol = fx128::from_f64(1e3) * <fx128 as Scalar>::eps() * scale;
+    let one = fx128::from_f64(1.0);
+    let span = one.max(lambda.abs()).max(back.abs()).max(if s.unbounded {
+        one
+    } else {
+        (s.lambda_to - lambda).abs()
+    });
+    let gap_tol = fx128::from_f64(T::eps().to_f64().sqrt()) * span;
     for (name, from, slope) in [("z", &s.z_from, &s.dz), ("w", &s.w_from, &s.dw)] {
         for i in 0..from.nrows() {
-            let v = at(from, slope, i);
-            if v < -tol {
+            let v = from[i] + slope[i] * back;
+            if v < fx128::from_f64(0.0) && -v > gap_tol * slope[i].abs() {
                 return Err(format!(
-                    "the restart basis is not the path's at L = {:e}: {name}{i} = {:e} there (an event lies between it and the restart point)",
+                    "the restart basis is not the path's at L = {:e}: {name}{i} = {:e} there, zero only at L = {:e} (an event lies between)",
                     lambda.to_f64(),
-                    v.to_f64()
+                    v.to_f64(),
+                    (lambda - v / slope[i]).to_f64()
                 ));
             }
         }

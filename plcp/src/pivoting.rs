@@ -475,7 +475,12 @@ impl<'a, T: Scalar> Engine<'a, T> {
         let compmax = (0..self.dim)
             .filter(|&r| is_comp(self.basis[r]))
             .fold(T::zero(), |a, r| a.max(col[r].abs()));
-        let ptol = self.noise * compmax;
+        // but never below the rounding of the whole column (dim roundings of
+        // its largest entry): where every z/w entry is rounding (a ray), the
+        // largest of them must not become a block (fx128 found one at
+        // L = 1.7e41 there)
+        let floor = T::from_f64(self.dim as f64) * T::eps() * colmax;
+        let ptol = (self.noise * compmax).max(floor);
         // (artificial rows, below, keep the whole column's scale)
         let ptol_all = self.noise * colmax;
         // artificial variables are fixed at zero: any move blocks them

@@ -22,7 +22,7 @@
 //! | residual guard | a path that claims success is downgraded to `ill_conditioned`; the trace stops as `ill_conditioned` at a breakpoint whose residual (after refinement) fails it | largest reported residual `> sqrt(eps)` |
 //! | reduction ties | Lemke on the Schur reduction of a mixed problem: the tie tolerance of the reduced path | `tie_tol_eps` times [`reduction_tie_factor`] (`cond(F)`, at least 1, and the product at most `sqrt(eps)`) |
 //! | doubtful success | with `Settings::escalate`, a path that ends `reached`, `unbounded_ray` or `secondary_ray` in `f32`/`f64` on a basis whose condition estimate times `eps` exceeded [`ESCALATE_COND_EPS`] (`1e-5`: fewer than about five digits left) is continued in `fx128` like an `ill_conditioned` one |
-//! | restart check | an `fx128` warm restart inside segment `k` must be feasible back to the segment's start `L_k` (else events lie between: the basis is not the path's there) | `z, w >= -tie_tol_eps * eps * max(1, abs(x))` at `L_k` |
+//! | restart check | an `fx128` warm restart inside segment `k` must be feasible back to the segment's start `L_k` (else events lie between: the basis is not the path's there) | a `z` or `w` negative at `L_k` must reach zero within `sqrt(eps) * max(1, abs(L_k), segment)` of `L_k` (`eps` of the working precision: what its breakpoint can be off by) |
 //! | breakpoint re-intersection | Lemke on the Schur reduction: a breakpoint moves to where the polished segment's leaving variable is zero | only by `<= sqrt(eps) * max(1, abs(L))` |
 
 use crate::scalar::Scalar;
