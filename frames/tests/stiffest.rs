@@ -74,12 +74,11 @@ fn stiffest_cantilever_no_success_with_missing_events() {
     }
 }
 
-/// The whole answer: six breakpoints, then an unbounded ray. fx128 finds the
-/// sixth only to 8e-11 and stops `ill_conditioned` there (its residual
-/// 1.9e-10 fails the guard); this needs the exact last step of the
-/// escalation.
+/// The whole answer with the defaults: six breakpoints, then an unbounded
+/// ray (f64 up to the fourth, the rest continued in fx128 from inside the
+/// fourth segment; fx128 alone stops `ill_conditioned` at the sixth, found
+/// there only to 8e-11).
 #[test]
-#[ignore = "needs the exact (rational) step of the escalation (issue 14): fx128 stops ill_conditioned at the sixth breakpoint"]
 fn stiffest_cantilever_full_answer() {
     let a = run();
     let got = breakpoints(&a);
