@@ -174,20 +174,48 @@ fn warm_basis_of<T: Scalar>(
     (b.len() == p + n).then_some(b)
 }
 
-/// Continues `path` (of `problem`, solved with `settings`) in `fx128`, if it
-/// ended `ill_conditioned`. Called by [`crate::solve`] when
+/// Whether `path` (in `f32`/`f64`) is continued in `fx128`: it ended
+/// `ill_conditioned`, or it claims an end (`reached`, `unbounded_ray`,
+/// `secondary_ray`) on a basis whose condition estimate times `eps` exceeded
+/// [`crate::tolerance::ESCALATE_COND_EPS`].
+pub(crate) fn needs_fx128<T: Scalar>(path: &Path<T>) -> bool {
+    if T::NAME == <fx128 as Scalar>::NAME {
+        return false;
+    }
+    match path.status {
+        Status::IllConditioned => true,
+        Status::Reached | Status::UnboundedRay | Status::SecondaryRay => {
+            path.info.max_condition * T::eps().to_f64() > crate::tolerance::ESCALATE_COND_EPS
+        }
+        _ => false,
+    }
+}
+
+/// Continues `path` (of `problem`, solved with `settings`) in `fx128`, if
+/// [`needs_fx128`] says so. Called by [`crate::solve`] when
 /// [`Settings::escalate`] is set; a no-op in `fx128` itself.
 pub(crate) fn continue_in_fx128<T: Scalar>(
     problem: &Plcp<T>,
     settings: &Settings<T>,
     path: &mut Path<T>,
 ) {
-    if T::NAME == <fx128 as Scalar>::NAME || path.status != Status::IllConditioned {
+    if !needs_fx128(path) {
         return;
     }
     let timer = std::time::Instant::now();
     let (p, n) = (problem.free(), problem.n());
-    let reason = format!("{} in {}: {}", path.status.as_str(), T::NAME, path.message);
+    let reason = if path.status == Status::IllConditioned {
+        format!("{} in {}: {}", path.status.as_str(), T::NAME, path.message)
+    } else {
+        format!(
+            "{} in {} on a basis of condition estimate {:.1e} (cond * eps = {:.1e} > {:.0e}: breakpoints to about that relative error, and a blocking entry below it is lost, which fakes a ray): not trusted without fx128",
+            path.status.as_str(),
+            T::NAME,
+            path.info.max_condition,
+            path.info.max_condition * T::eps().to_f64(),
+            crate::tolerance::ESCALATE_COND_EPS
+        )
+    };
     let wide = problem.cast::<fx128>();
     // a warm continuation from segment k, else a whole re-solve
     let mut escalation = Escalation {
@@ -227,7 +255,15 @@ pub(crate) fn continue_in_fx128<T: Scalar>(
                 probe.info.warm_start_note
             ));
         }
-        crate::solve(&pr, &settings_fx128(settings, Some(basis))).map_err(|e| e.to_string())
+        let rest =
+            crate::solve(&pr, &settings_fx128(settings, Some(basis))).map_err(|e| e.to_string())?;
+        // the basis is feasible at the restart point; it is the path's basis
+        // at L_k only if it stays feasible back to L_k (affine: at L_k), else
+        // the true path has events between L_k and the restart point, which
+        // the splice would lose (the working precision had already missed one
+        // inside segment k)
+        feasible_back_to::<T>(&rest, fx128::from_f64(seg.lambda_from.to_f64()))?;
+        Ok(rest)
     };
     // the segment the trouble arose in may itself start where the working
     // precision already erred (its start is where its basis was first formed):
@@ -280,6 +316,40 @@ pub(crate) fn continue_in_fx128<T: Scalar>(
     escalation.seconds_fx128 = timer.elapsed().as_secs_f64();
     path.info.solve_seconds = escalation.seconds_before + escalation.seconds_fx128;
     path.info.escalation = Some(escalation);
+}
+
+/// `Ok` if the first segment of `rest`, extended back to `lambda` (its basis,
+/// its affine solution), has `z, w >= 0` there, up to what the working
+/// precision's breakpoint `lambda` can be off by: a variable negative at
+/// `lambda` must reach zero within `sqrt(eps) * max(1, |lambda|, segment)`
+/// of it (`eps` of `T`); else an event lies between `lambda` and the restart
+/// point, and why is returned.
+fn feasible_back_to<T: Scalar>(rest: &Path<fx128>, lambda: fx128) -> Result<(), String> {
+    let Some(s) = rest.segments.first() else {
+        return Ok(());
+    };
+    let back = lambda - s.lambda_from;
+    let one = fx128::from_f64(1.0);
+    let span = one.max(lambda.abs()).max(back.abs()).max(if s.unbounded {
+        one
+    } else {
+        (s.lambda_to - lambda).abs()
+    });
+    let gap_tol = fx128::from_f64(T::eps().to_f64().sqrt()) * span;
+    for (name, from, slope) in [("z", &s.z_from, &s.dz), ("w", &s.w_from, &s.dw)] {
+        for i in 0..from.nrows() {
+            let v = from[i] + slope[i] * back;
+            if v < fx128::from_f64(0.0) && -v > gap_tol * slope[i].abs() {
+                return Err(format!(
+                    "the restart basis is not the path's at L = {:e}: {name}{i} = {:e} there, zero only at L = {:e} (an event lies between)",
+                    lambda.to_f64(),
+                    v.to_f64(),
+                    (lambda - v / slope[i]).to_f64()
+                ));
+            }
+        }
+    }
+    Ok(())
 }
 
 /// Keeps `path.segments[..k]` and the breakpoints up to their end, and appends

@@ -85,7 +85,8 @@ pub use settings::{BasisKind, Method, Settings, DEFAULT_REFACTOR_PERIOD};
 /// Traces the solution path of `problem` with the method chosen in `settings`.
 ///
 /// With [`Settings::escalate`], a path that ends `IllConditioned` in `f32` or
-/// `f64` is continued in `fx128` ([`escalate`]).
+/// `f64`, or claims its end on a basis too ill-conditioned to be sure of it
+/// ([`tolerance::ESCALATE_COND_EPS`]), is continued in `fx128` ([`escalate`]).
 ///
 /// Returns `Err` only for invalid settings, or for [`Method::Lemke`] on a mixed
 /// problem whose free block is singular (use [`Method::Wolfe`] there). Every
@@ -93,7 +94,7 @@ pub use settings::{BasisKind, Method, Settings, DEFAULT_REFACTOR_PERIOD};
 pub fn solve<T: Scalar>(problem: &Plcp<T>, settings: &Settings<T>) -> Result<Path<T>, PlcpError> {
     let mut path = solve_unchecked(problem, settings)?;
     guard_residual(&mut path);
-    if settings.escalate && path.status == Status::IllConditioned {
+    if settings.escalate && escalate::needs_fx128(&path) {
         escalate::continue_in_fx128(problem, settings, &mut path);
         if path.info.escalation.is_some() {
             // the spliced path: start and end measured on the original problem,

@@ -466,12 +466,28 @@ impl<'a, T: Scalar> Engine<'a, T> {
         if colmax == T::zero() {
             return None;
         }
-        let ptol = self.noise * colmax;
+        // the pivot tolerance of the candidates is relative to the entries of
+        // the sign-constrained rows (z, w): a basic L's entry is the rate of
+        // the parameter and a free variable's is in its own units; where they
+        // are large per unit of the driver (L at 1e9, u at 8e4 in the stiffest
+        // frame, issue 14 defect 5) they made an accurate entry of 1e-3 at the
+        // blocking row look like rounding, and the path ran past the event
+        let compmax = (0..self.dim)
+            .filter(|&r| is_comp(self.basis[r]))
+            .fold(T::zero(), |a, r| a.max(col[r].abs()));
+        // but never below the rounding of the whole column (dim roundings of
+        // its largest entry): where every z/w entry is rounding (a ray), the
+        // largest of them must not become a block (fx128 found one at
+        // L = 1.7e41 there)
+        let floor = T::from_f64(self.dim as f64) * T::eps() * colmax;
+        let ptol = (self.noise * compmax).max(floor);
+        // (artificial rows, below, keep the whole column's scale)
+        let ptol_all = self.noise * colmax;
         // artificial variables are fixed at zero: any move blocks them
         let mut art: Option<usize> = None;
         for r in 0..self.dim {
             if matches!(self.basis[r], Var::Artificial(_))
-                && col[r].abs() > ptol
+                && col[r].abs() > ptol_all
                 && art.is_none_or(|a| col[r].abs() > col[a].abs())
             {
                 art = Some(r);
@@ -516,8 +532,23 @@ impl<'a, T: Scalar> Engine<'a, T> {
                         })
                         .collect(),
                     None => {
+                        // entries of B^{-1} e_k at its rounding level (the
+                        // pivot tolerance's noise, relative to the column) are
+                        // zeros of the exact inverse: compared as such, else
+                        // rounding decides where the exact rule looks further
+                        // (tobenna: 29 tied rows whose entries in a column are
+                        // all exact zeros, computed as 1e-18 of noise)
                         let inv_k = self.factor.unit(k);
-                        tied.iter().map(|&r| inv_k[r] / col[r]).collect()
+                        let zero = self.noise * col_max_abs(&inv_k);
+                        tied.iter()
+                            .map(|&r| {
+                                if inv_k[r].abs() <= zero {
+                                    T::zero()
+                                } else {
+                                    inv_k[r] / col[r]
+                                }
+                            })
+                            .collect()
                     }
                 };
                 let vmin = vals.iter().fold(vals[0], |a, &b| a.min(b));

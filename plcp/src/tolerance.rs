@@ -25,9 +25,22 @@
 //! | infeasibility certificate | the start phase's ray proves `infeasible` ([`crate::evidence`]) | `v >= -CERT_EPS eps n max v`; `(M'v)_j <= CERT_EPS eps n sum_i abs(M_ij v_i)`; `(q + L0 d)'v < -CERT_EPS eps n sum_i abs((q + L0 d)_i v_i)` ([`crate::evidence::CERT_EPS`] `= 1e3`) |
 //! | P-matrix check | a ray with `M`'s symmetric part positive definite is `ill_conditioned` | Cholesky of `(M + M')/2 - CERT_EPS n eps_64 max abs(M_ij) I` succeeds (orders up to [`crate::evidence::PD_CHECK_MAX_ORDER`]) |
 //! | underflow | a datum is rejected ([`crate::PlcpError::Underflow`]) | nonzero and below [`crate::Scalar::min_normal`] in the working type |
+//! | doubtful success | with `Settings::escalate`, a path that ends `reached`, `unbounded_ray` or `secondary_ray` in `f32`/`f64` on a basis whose condition estimate times `eps` exceeded [`ESCALATE_COND_EPS`] (`1e-5`: fewer than about five digits left) is continued in `fx128` like an `ill_conditioned` one |
+//! | restart check | an `fx128` warm restart inside segment `k` must be feasible back to the segment's start `L_k` (else events lie between: the basis is not the path's there) | a `z` or `w` negative at `L_k` must reach zero within `sqrt(eps) * max(1, abs(L_k), segment)` of `L_k` (`eps` of the working precision: what its breakpoint can be off by) |
 //! | breakpoint re-intersection | Lemke on the Schur reduction: a breakpoint moves to where the polished segment's leaving variable is zero | only by `<= sqrt(eps) * max(1, abs(L))` |
 
 use crate::scalar::Scalar;
+
+/// With [`crate::Settings::escalate`], a path in `f32`/`f64` that claims an
+/// end (`reached`, a ray) on a basis with `cond * eps` above this is checked
+/// in `fx128` ([`crate::escalate`]): its breakpoints carry relative errors of
+/// about `cond * eps`, and a column entry below that level is lost to
+/// cancellation, which turns a blocking row into a false ray (the stiffest
+/// frame of issue 14: `cond = 2.8e13` in f64, the event at `L = 1.02e16`
+/// lost and the last segment claimed unbounded, residual `1.2e-8` just below
+/// the residual guard's `sqrt(eps)`). Above the `1000`-element cantilever's
+/// `cond * eps = 8.8e-7` (traced right in f64), so that stays in f64.
+pub const ESCALATE_COND_EPS: f64 = 1e-5;
 
 /// Entries of a row of `B^{-1}` (sparse basis, lexicographic rule) below this
 /// many `eps` times the row's largest entry are rounding noise, zeros of the
