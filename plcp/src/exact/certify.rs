@@ -277,11 +277,8 @@ fn check_values<T: Scalar>(
 
 /// The value of the basic or nonbasic variable `v` at `lambda`.
 fn value_at(t: &Tableau, v: Var, lambda: &BigRational) -> BigRational {
-    match t.col_of(v).and_then(|c| t.row_of(c)) {
-        Some(i) => {
-            let (a, b) = t.affine(i);
-            a + b * lambda
-        }
+    match t.col_of(v) {
+        Some(c) => t.value(c, lambda),
         None => BigRational::zero(),
     }
 }
@@ -350,12 +347,15 @@ fn run<T: Scalar>(
                 ),
             ));
         }
+        // Lemke on the Schur reduction lists z and w only (every u basic);
+        // Wolfe's long form lists the basic u (the others held at zero, their
+        // dependent rows kept by artificial variables)
+        let all_u = !seg.basis.iter().any(|v| matches!(v, Var::U(_)));
         let target: Vec<usize> = seg
             .basis
             .iter()
-            .filter(|v| !matches!(v, Var::U(_)))
             .map(|v| t.col_of(*v).expect("checked"))
-            .chain(0..p)
+            .chain((0..p).filter(|_| all_u))
             .collect();
         pivot_to(&mut t, &target, &mut cert.pivots);
         let start_k = start.clone();
