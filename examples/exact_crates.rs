@@ -19,7 +19,6 @@ use rand::{Rng, SeedableRng};
 use std::time::Instant;
 
 trait Big: Clone {
-    const NAME: &'static str;
     fn from_scaled(mantissa: i64, shift: u32) -> Self;
     fn mul_sub_div(a: &Self, b: &Self, c: &Self, d: &Self, div: &Self) -> Self;
     fn is_zero(&self) -> bool;
@@ -27,7 +26,6 @@ trait Big: Clone {
 }
 
 impl Big for num_bigint::BigInt {
-    const NAME: &'static str = "num-bigint 0.4";
     fn from_scaled(m: i64, s: u32) -> Self {
         num_bigint::BigInt::from(m) << s
     }
@@ -43,7 +41,6 @@ impl Big for num_bigint::BigInt {
 }
 
 impl Big for dashu_int::IBig {
-    const NAME: &'static str = "dashu-int 0.4";
     fn from_scaled(m: i64, s: u32) -> Self {
         dashu_int::IBig::from(m) << s as usize
     }

@@ -191,6 +191,14 @@ fn pivot_to(t: &mut Tableau, target: &[usize], pivots: &mut usize) {
     }
 }
 
+/// `err <= limit`, false for NaN (an unmeasurable difference fails).
+fn within(err: f64, limit: f64) -> bool {
+    err <= limit
+}
+
+/// A named group of variables: name, first column, count, values, slopes.
+type Group<'a, T> = (&'a str, usize, usize, &'a faer::Col<T>, &'a faer::Col<T>);
+
 /// Compares the float values of segment `seg` with the exact ones of the
 /// basis in `t`, at the exact start and end (the slopes for an unbounded
 /// segment), relative to the largest entry of each vector.
@@ -204,7 +212,7 @@ fn check_values<T: Scalar>(
 ) -> Result<(), String> {
     let (p, n) = (t.p, t.n);
     let from = to_rational(seg.lambda_from);
-    let groups: [(&str, usize, usize, &faer::Col<T>, &faer::Col<T>); 3] = [
+    let groups: [Group<'_, T>; 3] = [
         ("z", p, n, &seg.z_from, &seg.dz),
         ("w", p + n, n, &seg.w_from, &seg.dw),
         ("u", 0, if u_unique { p } else { 0 }, &seg.u_from, &seg.du),
@@ -243,7 +251,7 @@ fn check_values<T: Scalar>(
             let (i, err) = (0..len)
                 .map(|i| (i, (exact[i] - float[i]).abs() / scale))
                 .fold((0, 0.0), |a, b| if b.1 > a.1 { b } else { a });
-            if !(err <= limit) {
+            if !within(err, limit) {
                 return Err(format!(
                     "the float {name}{i} = {:e} at L = {} differs from the exact {:e} by {err:.1e} of the solution's scale {scale:.1e} (> sqrt(eps) = {limit:.1e})",
                     float[i],
@@ -262,7 +270,7 @@ fn check_values<T: Scalar>(
                 .collect();
             for i in 0..len {
                 let err = (exact[i] - dx[i].to_f64()).abs() / scale;
-                if !(err <= limit) {
+                if !within(err, limit) {
                     return Err(format!(
                         "the float slope d{name}{i}/dL = {:e} of the unbounded segment differs from the exact {:e}",
                         dx[i].to_f64(),
@@ -453,7 +461,7 @@ fn run<T: Scalar>(
             // the float breakpoint must be the exact one up to the working
             // precision's trust level (sqrt(eps), as the residual guard)
             let diff = rel_diff(end_float, e, &start);
-            if !(diff <= limit) && !(last && !path.status.is_success()) {
+            if !within(diff, limit) && (!last || path.status.is_success()) {
                 return Err(fail(
                     k,
                     format!(
