@@ -140,7 +140,10 @@ mod tests {
         let tiny = f64::from_bits(1); // the smallest subnormal
         assert_eq!(rational_to_f64(&f64_to_rational(tiny)), tiny);
         // a double-double: 1 + 2^-80 is not an f64 but is exact here
-        let x = faer::fx128(1.0, 2f64.powi(-80));
+        let x = faer::fx128 {
+            0: 1.0,
+            1: 2f64.powi(-80),
+        };
         let r = to_rational(x);
         assert_eq!(
             r - BigRational::from_integer(1.into()),
