@@ -24,6 +24,12 @@ pub struct AnalysisOptions {
     /// and re-solve in `fx128` when it ends early otherwise or does not satisfy
     /// system (9) to 1e-6 (default `true`; only for `f64`).
     pub escalate: bool,
+    /// Certify the path in exact rational arithmetic
+    /// ([`solve::solve_certified`]; default `false`).
+    pub certify: bool,
+    /// Solve in exact rational arithmetic instead of `solve.precision`
+    /// ([`solve::solve_exact`]; no escalation; default `false`).
+    pub exact: bool,
 }
 
 impl Default for AnalysisOptions {
@@ -33,6 +39,8 @@ impl Default for AnalysisOptions {
             t_end: None,
             samples: 201,
             escalate: true,
+            certify: false,
+            exact: false,
         }
     }
 }
@@ -84,9 +92,19 @@ impl Analysis {
             }
         }
         let system = System::assemble(&scene.frame);
-        let escalate = options.escalate && options.solve.precision == plcp::Precision::F64;
+        let escalate =
+            options.escalate && !options.exact && options.solve.precision == plcp::Precision::F64;
         // an ill_conditioned f64 path is continued in fx128 from where it failed
-        let mut solution = solve::solve_escalating(&system, &options.solve, escalate)?;
+        let solve_with = |o: &SolveOptions, escalate: bool| {
+            if options.exact {
+                solve::solve_exact(&system, o)
+            } else if options.certify {
+                solve::solve_certified(&system, o, escalate)
+            } else {
+                solve::solve_escalating(&system, o, escalate)
+            }
+        };
+        let mut solution = solve_with(&options.solve, escalate)?;
         let mut note = solution.info.escalation.as_ref().map(|e| {
             let how = if e.warm {
                 format!(
@@ -108,7 +126,7 @@ impl Analysis {
                 precision: plcp::Precision::F128,
                 ..options.solve
             };
-            if let Ok(better) = solve::solve(&system, &wide) {
+            if let Ok(better) = solve_with(&wide, false) {
                 if !poor(&better) {
                     note = Some(format!(
                         "the f64 path was not good enough (status {}, residual {:.1e}): re-solved in f128",

@@ -238,6 +238,29 @@ impl Analysis {
         out
     }
 
+    /// The critical loads (the reading's breakpoints) as their exact values
+    /// from the certificate, as short fractions where short (`1`, `13/3`),
+    /// else decimals; a load the certificate does not hold (to 1e-9
+    /// relative) is given as its float value followed by `?`.
+    pub fn exact_critical_loads(&self) -> Vec<String> {
+        let Some(c) = &self.solution.info.certificate else {
+            return Vec::new();
+        };
+        self.reading
+            .breakpoints
+            .iter()
+            .map(|b| {
+                c.breakpoints
+                    .iter()
+                    .find(|e| {
+                        let ef = plcp::exact::rational_to_f64(e);
+                        (ef - b.lambda).abs() <= 1e-9 * ef.abs().max(1e-300)
+                    })
+                    .map_or_else(|| format!("{}?", fmt_g(b.lambda)), plcp::exact::short)
+            })
+            .collect()
+    }
+
     /// The JSON document (`--json`).
     pub fn to_json(&self) -> Value {
         let fr = &self.scene.frame;
@@ -285,6 +308,8 @@ impl Analysis {
             "message": self.solution.message,
             "note": self.note,
             "free_block": {"rank": info.free_block.rank, "nonbasic_free": info.free_block.nonbasic_free.len(), "dependent_rows": info.free_block.dependent_rows.len()},
+            "certificate": info.certificate.as_ref().map(|c| c.to_json()),
+            "exact_critical_loads": info.certificate.as_ref().map(|_| self.exact_critical_loads()),
         });
         let breakpoints: Vec<Value> = self
             .reading
@@ -644,6 +669,26 @@ impl Analysis {
         );
         if let Some(n) = &self.note {
             let _ = writeln!(s, "  note: {n}");
+        }
+        if let Some(c) = &info.certificate {
+            if c.certified() {
+                let _ = writeln!(
+                    s,
+                    "  certified in exact rational arithmetic: {} segments in {:.3} s, float breakpoints within {:.1e} (relative) of the exact ones",
+                    c.segments, c.seconds, c.max_rel_diff
+                );
+                let _ = writeln!(
+                    s,
+                    "  exact critical loads: {}",
+                    self.exact_critical_loads().join(", ")
+                );
+            } else if let Some(f) = &c.failure {
+                let _ = writeln!(
+                    s,
+                    "  WARNING: exact certification REJECTED the path at segment {}: {}",
+                    f.segment, f.reason
+                );
+            }
         }
         if info.residual.worst() > 1e-6 {
             let _ = writeln!(

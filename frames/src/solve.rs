@@ -148,6 +148,7 @@ fn solve_in<T: Scalar>(
     system: &System,
     options: &SolveOptions,
     escalate: bool,
+    certify: bool,
 ) -> Result<Solution, FramesError> {
     let mut settings = Settings::<T>::with_method(options.method);
     settings.escalate = escalate;
@@ -157,7 +158,46 @@ fn solve_in<T: Scalar>(
     } else {
         system.plcp::<T>(options.lambda_max)?
     };
-    let path = plcp::solve(&problem, &settings)?;
+    let path = if certify {
+        plcp::solve_certified(&problem, &settings)?
+    } else {
+        plcp::solve(&problem, &settings)?
+    };
+    Ok(read(path))
+}
+
+/// [`solve_escalating`], then the path certified in exact rational
+/// arithmetic ([`plcp::solve_certified`]): the certificate is
+/// `Solution::info.certificate`, and a success it rejects is reported
+/// `ill_conditioned` with its reason.
+pub fn solve_certified(
+    system: &System,
+    options: &SolveOptions,
+    escalate: bool,
+) -> Result<Solution, FramesError> {
+    solve_checked(system, options, escalate, true)
+}
+
+/// Solves system (9) in exact rational arithmetic ([`plcp::exact::trace`],
+/// the dense system read in `f64`), then certifies the exact path (which
+/// gives `Solution::info.certificate` with the exact breakpoints; a failure
+/// there would be a bug of the tracer). `Err` for a system above
+/// [`plcp::exact::EXACT_MAX_DIM`] unknowns or with a singular free block (a
+/// statically indeterminate frame whose redundants are not unique).
+pub fn solve_exact(system: &System, options: &SolveOptions) -> Result<Solution, FramesError> {
+    if let Some(l) = options.lambda_max {
+        if l.is_nan() || l <= 0.0 {
+            return Err(FramesError::invalid(
+                "lambda_max",
+                format!("must be positive, got {l}"),
+            ));
+        }
+    }
+    let problem = system.plcp::<f64>(options.lambda_max)?;
+    let traced = plcp::exact::trace(&problem, &Settings::with_method(options.method))?;
+    let mut path = traced.path;
+    let cert = plcp::exact::certify(&problem, &path);
+    path.info.certificate = Some(cert);
     Ok(read(path))
 }
 
@@ -178,6 +218,15 @@ pub fn solve_escalating(
     options: &SolveOptions,
     escalate: bool,
 ) -> Result<Solution, FramesError> {
+    solve_checked(system, options, escalate, false)
+}
+
+fn solve_checked(
+    system: &System,
+    options: &SolveOptions,
+    escalate: bool,
+    certify: bool,
+) -> Result<Solution, FramesError> {
     if let Some(l) = options.lambda_max {
         if l.is_nan() || l <= 0.0 {
             return Err(FramesError::invalid(
@@ -187,8 +236,8 @@ pub fn solve_escalating(
         }
     }
     match options.precision {
-        Precision::F32 => solve_in::<f32>(system, options, escalate),
-        Precision::F64 => solve_in::<f64>(system, options, escalate),
-        Precision::F128 => solve_in::<faer::fx128>(system, options, false),
+        Precision::F32 => solve_in::<f32>(system, options, escalate, certify),
+        Precision::F64 => solve_in::<f64>(system, options, escalate, certify),
+        Precision::F128 => solve_in::<faer::fx128>(system, options, false, certify),
     }
 }

@@ -59,6 +59,7 @@ pub mod basis;
 pub mod error;
 pub mod escalate;
 pub mod evidence;
+pub mod exact;
 pub mod io;
 pub mod lemke;
 pub mod linalg;
@@ -76,6 +77,7 @@ pub mod wolfe;
 
 pub use error::PlcpError;
 pub use escalate::Escalation;
+pub use exact::{certify, Certificate};
 pub use lemke::{solve_lcp, LcpSolution};
 pub use path::{Breakpoint, FreeBlockInfo, Info, Path, Point, Ray, Residual, Segment, Status, Var};
 pub use problem::{Lcp, Plcp};
@@ -105,6 +107,73 @@ pub fn solve<T: Scalar>(problem: &Plcp<T>, settings: &Settings<T>) -> Result<Pat
         }
     }
     Ok(path)
+}
+
+/// [`solve`], then [`certify`] the path in exact rational arithmetic; the
+/// certificate is [`Info::certificate`]. A path that claims success
+/// (`reached`, `unbounded_ray`) but is rejected becomes `IllConditioned`
+/// (its floats cannot be trusted in this precision: try a higher one, or
+/// [`exact::trace`]), `lambda_reached` falls back to the start of the failing
+/// segment, and the message gives the certificate's reason. So a success
+/// status from this function is a certified one. Costs one exact pivot per
+/// basis change (`docs/certification.md`).
+///
+/// ```
+/// use faer::{mat, col};
+/// let m = mat![[2.0, 1.0], [1.0, 2.0]];
+/// let problem = plcp::Plcp::new(m.as_ref(), col![1.0, 1.0].as_ref(), col![-1.0, -0.5].as_ref()).unwrap();
+/// let path = plcp::solve_certified(&problem, &plcp::Settings::default()).unwrap();
+/// let cert = path.info.certificate.as_ref().unwrap();
+/// assert!(cert.certified());
+/// assert_eq!(plcp::exact::short(&cert.breakpoints[0]), "1"); // w0 = 1 - L
+/// ```
+pub fn solve_certified<T: Scalar>(
+    problem: &Plcp<T>,
+    settings: &Settings<T>,
+) -> Result<Path<T>, PlcpError> {
+    let mut path = solve(problem, settings)?;
+    let cert = exact::certify(problem, &path);
+    reject_uncertified(&mut path, &cert);
+    path.info.certificate = Some(cert);
+    Ok(path)
+}
+
+/// A path that claims success but whose exact certificate rejects it becomes
+/// `IllConditioned` (its floats cannot be trusted in this precision), with the
+/// certificate's reason, and claims nothing beyond the start of the failing
+/// segment.
+fn reject_uncertified<T: Scalar>(path: &mut Path<T>, cert: &Certificate) {
+    let Some(fail) = &cert.failure else {
+        return;
+    };
+    if !path.status.is_success() {
+        path.message = format!(
+            "{} (exact certification of the traced part: rejected at segment {}: {})",
+            path.message, fail.segment, fail.reason
+        );
+        return;
+    }
+    path.message = format!(
+        "exact certification rejected the {} path at segment {}: {}; the answer cannot be trusted in {}: try a higher precision or exact. {}",
+        path.status.as_str(),
+        fail.segment,
+        fail.reason,
+        T::NAME,
+        path.message
+    );
+    path.status = Status::IllConditioned;
+    if let Some(seg) = path.segments.get(fail.segment) {
+        path.lambda_reached = seg.lambda_from;
+    } else if !path.lambda_reached.is_finite() {
+        path.lambda_reached = path.end.lambda;
+    }
+    if let Some(seg) = path.segments.last_mut() {
+        if seg.unbounded {
+            seg.unbounded = false;
+            seg.lambda_to = seg.lambda_from;
+        }
+    }
+    path.ray = None;
 }
 
 /// A path that claims success must satisfy the problem: if its largest residual

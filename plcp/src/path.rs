@@ -304,6 +304,9 @@ pub struct Info {
     /// from which `L`, why, and the pivots and time in each precision. The counts
     /// above then add both runs.
     pub escalation: Option<crate::escalate::Escalation>,
+    /// The exact certificate of the path, when [`crate::Settings::certify`]
+    /// asked for one.
+    pub certificate: Option<crate::exact::Certificate>,
 }
 
 /// A secondary or unbounded ray: the last point plus `t` times a direction, `t >= 0`.

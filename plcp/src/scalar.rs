@@ -66,6 +66,14 @@ pub trait Scalar: RealField + Copy + Send + Sync + core::ops::Neg<Output = Self>
         Self::wide_mul_add(acc, a, b)
     }
 
+    /// The value as an unevaluated sum of two `f64` (exact): `(x, 0)` for
+    /// `f32` and `f64`, the two halves of a double-double. [`crate::exact`]
+    /// reads every number of a problem through it.
+    #[inline]
+    fn parts(self) -> (f64, f64) {
+        (self.to_f64(), 0.0)
+    }
+
     /// Converts from `f64` (exact for `f64` and `fx128`, rounded for `f32`).
     #[inline]
     fn from_f64(x: f64) -> Self {
@@ -204,6 +212,10 @@ impl Scalar for faer::fx128 {
 
     fn to_f64(self) -> f64 {
         self.0 + self.1
+    }
+    #[inline]
+    fn parts(self) -> (f64, f64) {
+        (self.0, self.1)
     }
     #[inline]
     fn widen(self) -> Self {

@@ -37,10 +37,14 @@ enum Command {
         /// wolfe (long form, any frame) or lemke (Schur reduction, statically determinate frames).
         #[arg(long, default_value = "wolfe", value_parser = parse_method)]
         method: Method,
-        /// Working precision of the solve: f32, f64 or f128.
+        /// Working precision of the solve: f32, f64, f128, or exact (big rationals).
         /// (Default f64, re-solved in f128 when the f64 path is not a solution.)
         #[arg(long, value_parser = parse_precision)]
-        precision: Option<Precision>,
+        precision: Option<FramePrecision>,
+        /// Certify the path in exact rational arithmetic; the report shows the
+        /// exact critical loads.
+        #[arg(long)]
+        certify: bool,
         /// Largest Lambda to trace (default: infinity).
         #[arg(long, value_name = "X")]
         lambda_max: Option<f64>,
@@ -69,8 +73,20 @@ fn parse_method(s: &str) -> Result<Method, String> {
     s.parse()
 }
 
-fn parse_precision(s: &str) -> Result<Precision, String> {
-    s.parse()
+/// A float precision or exact rationals.
+#[derive(Clone, Copy)]
+enum FramePrecision {
+    Float(Precision),
+    Exact,
+}
+
+fn parse_precision(s: &str) -> Result<FramePrecision, String> {
+    if s == "exact" {
+        return Ok(FramePrecision::Exact);
+    }
+    s.parse::<Precision>()
+        .map(FramePrecision::Float)
+        .map_err(|_| format!("unknown precision '{s}': expected f32, f64, f128 or exact"))
 }
 
 /// Writes to stdout; a closed pipe (`frames run ... | head`) is not an error.
@@ -86,6 +102,7 @@ fn run(cli: Cli) -> Result<(), FramesError> {
             plots,
             method,
             precision,
+            certify,
             lambda_max,
             t_end,
             timestep_after,
@@ -95,11 +112,16 @@ fn run(cli: Cli) -> Result<(), FramesError> {
             let options = AnalysisOptions {
                 solve: SolveOptions {
                     method,
-                    precision: precision.unwrap_or(Precision::F64),
+                    precision: match precision {
+                        Some(FramePrecision::Float(p)) => p,
+                        _ => Precision::F64,
+                    },
                     lambda_max,
                 },
                 t_end,
                 escalate: precision.is_none(),
+                certify,
+                exact: matches!(precision, Some(FramePrecision::Exact)),
                 ..AnalysisOptions::default()
             };
             let mut analysis = Analysis::run(scene, &options)?;

@@ -1,7 +1,7 @@
 //! The plcp command line.
 //!
 //! ```text
-//! plcp solve FILE.json [--method lemke|wolfe] [--precision f32|f64|f128] [--lambda-max X] [--at L1,L2,...]
+//! plcp solve FILE.json [--method lemke|wolfe] [--precision f32|f64|f128|exact] [--lambda-max X] [--at L1,L2,...] [--certify]
 //! plcp lcp FILE.dat [--precision f32|f64|f128]
 //! ```
 //!
@@ -10,6 +10,14 @@
 //! `--lambda-max` overrides the file's (`inf` for infinity). `lcp` reads a
 //! Siconos `.dat` file ([`plcp::io::siconos`]) and prints the solution of the
 //! LCP ([`plcp::io::json::lcp_json`]).
+//!
+//! `solve --certify` checks the path in exact rational arithmetic
+//! ([`plcp::solve_certified`]) and adds a `certificate` object to the JSON
+//! ([`plcp::Certificate::to_json`]); a success the certificate rejects is
+//! reported `ill_conditioned`. `solve --precision exact` traces the path in
+//! exact arithmetic ([`plcp::exact::trace`], the data read as `f64`, order at
+//! most [`plcp::exact::EXACT_MAX_DIM`]); its JSON adds `exact_breakpoints`
+//! (short fractions such as `"13/3"`, else decimals).
 //!
 //! Exit codes: 0 when a report was printed (read its `status`), 2 for bad
 //! input of any kind (command line, file, data), 3 for an internal error (a
@@ -47,9 +55,12 @@ enum Command {
         /// The algorithm: lemke or wolfe.
         #[arg(long, default_value = "lemke")]
         method: Method,
-        /// The working precision: f32, f64 or f128 (double-double).
-        #[arg(long, default_value = "f64")]
-        precision: Precision,
+        /// The working precision: f32, f64, f128 (double-double) or exact (big rationals).
+        #[arg(long, default_value = "f64", value_parser = parse_solve_precision)]
+        precision: SolvePrecision,
+        /// Certify the path in exact rational arithmetic (adds a "certificate" object).
+        #[arg(long)]
+        certify: bool,
         /// End of the parameter range, overriding the file's (a number, or inf).
         #[arg(long, value_parser = parse_lambda_max, allow_hyphen_values = true)]
         lambda_max: Option<f64>,
@@ -65,6 +76,22 @@ enum Command {
         #[arg(long, default_value = "f64")]
         precision: Precision,
     },
+}
+
+/// `solve`'s precisions: the float ones, or exact rationals.
+#[derive(Clone, Copy)]
+enum SolvePrecision {
+    Float(Precision),
+    Exact,
+}
+
+fn parse_solve_precision(s: &str) -> Result<SolvePrecision, String> {
+    if s == "exact" {
+        return Ok(SolvePrecision::Exact);
+    }
+    s.parse::<Precision>()
+        .map(SolvePrecision::Float)
+        .map_err(|_| format!("unknown precision '{s}': expected f32, f64, f128 or exact"))
 }
 
 fn parse_lambda_max(s: &str) -> Result<f64, String> {
@@ -103,6 +130,8 @@ fn solve<T: Scalar>(
     method: Method,
     lambda_max: Option<f64>,
     at: &[f64],
+    certify: bool,
+    exact: bool,
 ) -> Result<String, InputError> {
     let mut problem = read_plcp::<T>(file).map_err(in_file(file))?;
     if lambda_max.is_some() {
@@ -112,9 +141,42 @@ fn solve<T: Scalar>(
     }
     let settings = Settings::<T>::with_method(method);
     let start = Instant::now();
-    let path = plcp::solve(&problem, &settings)?;
+    if exact {
+        let problem: plcp::Plcp<f64> = problem.cast();
+        let traced = plcp::exact::trace(&problem, &Settings::with_method(method))?;
+        let cert = certify.then(|| traced.path.certify(&problem));
+        let seconds = start.elapsed().as_secs_f64();
+        let bps: Vec<String> = traced.breakpoints.iter().map(plcp::exact::short).collect();
+        let json = path_json(&problem, &traced.path, at, seconds);
+        let mut extra = format!(
+            "\"exact_breakpoints\":{}",
+            serde_json::to_string(&bps).unwrap_or_default()
+        );
+        if let Some(c) = cert {
+            extra = format!("{extra},\"certificate\":{}", c.to_json());
+        }
+        return Ok(append_fields(json, &extra));
+    }
+    let path = if certify {
+        plcp::solve_certified(&problem, &settings)?
+    } else {
+        plcp::solve(&problem, &settings)?
+    };
     let seconds = start.elapsed().as_secs_f64();
-    Ok(path_json(&problem, &path, at, seconds))
+    let json = path_json(&problem, &path, at, seconds);
+    Ok(match &path.info.certificate {
+        Some(c) => append_fields(json, &format!("\"certificate\":{}", c.to_json())),
+        None => json,
+    })
+}
+
+/// Adds `"key":value` fields (given as JSON text) to a JSON object's text.
+fn append_fields(json: String, fields: &str) -> String {
+    match json.trim_end().strip_suffix('}') {
+        Some(body) if body.trim_end().ends_with('{') => format!("{body}{fields}}}"),
+        Some(body) => format!("{body},{fields}}}"),
+        None => json,
+    }
 }
 
 fn lcp<T: Scalar>(file: &std::path::Path) -> Result<String, InputError> {
@@ -132,12 +194,21 @@ fn run(command: Command) -> Result<String, InputError> {
             file,
             method,
             precision,
+            certify,
             lambda_max,
             at,
         } => match precision {
-            Precision::F32 => solve::<f32>(&file, method, lambda_max, &at),
-            Precision::F64 => solve::<f64>(&file, method, lambda_max, &at),
-            Precision::F128 => solve::<faer::fx128>(&file, method, lambda_max, &at),
+            SolvePrecision::Float(Precision::F32) => {
+                solve::<f32>(&file, method, lambda_max, &at, certify, false)
+            }
+            SolvePrecision::Float(Precision::F64) => {
+                solve::<f64>(&file, method, lambda_max, &at, certify, false)
+            }
+            SolvePrecision::Float(Precision::F128) => {
+                solve::<faer::fx128>(&file, method, lambda_max, &at, certify, false)
+            }
+            // the data read as f64, each number then exact
+            SolvePrecision::Exact => solve::<f64>(&file, method, lambda_max, &at, certify, true),
         },
         Command::Lcp { file, precision } => match precision {
             Precision::F32 => lcp::<f32>(&file),

@@ -1,0 +1,505 @@
+//! Certifying a float path exactly.
+//!
+//! For segment `k` with basis `S_k` (one of `z_i`, `w_i` per pair, plus the
+//! free variables), the exact basic solution `x(L) = a + L b` is feasible on
+//! the exact interval `I_k = {L : a_i + L b_i >= 0 for every basic z, w}`.
+//! The certificate holds when, with `E_{-1} = L0`:
+//!
+//! 1. `S_k` is complementary (for each pair exactly one of `z_i`, `w_i`) and its
+//!    equality rows hold (an equality row whose artificial stays basic must
+//!    read `0 = 0` in both `q` and `d`);
+//! 2. `E_{k-1}` lies in `I_k` (the segment starts, feasibly, where the previous
+//!    one ended exactly);
+//! 3. `E_k` is the end of `I_k` in the segment's direction (where its leaving
+//!    variable reaches zero; the breakpoint's leaving variable must be zero
+//!    there), or `L_max` for the last segment of a `reached` path (which needs
+//!    `L_max` in `I_k`), or `+inf` for an unbounded ray (which needs `I_k`
+//!    unbounded above).
+//!
+//! Then for every `L` in `[L0, E_last]` some `S_k` gives an exact solution,
+//! complementary since the non-basic member of each pair is zero: the path's
+//! claim holds exactly, whatever rounding its floats carry. Free variables
+//! that cannot be basic (a singular free block) are held at zero, which gives
+//! one of the solutions if any exists with this `S_k`.
+
+use super::tableau::Tableau;
+use super::{rational_to_f64, rel_diff, short, to_rational};
+use crate::path::{Path, Status, Var};
+use crate::problem::Plcp;
+use crate::scalar::Scalar;
+use num_rational::BigRational;
+use num_traits::{Signed, Zero};
+use std::time::Instant;
+
+/// Why a path is not certified: the first segment that fails.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Failure {
+    /// The segment index (`segments.len()` for a check of the path's end).
+    pub segment: usize,
+    /// What failed, with the exact values.
+    pub reason: String,
+}
+
+/// The outcome of [`certify`].
+#[derive(Clone, Debug, Default)]
+pub struct Certificate {
+    /// `None`: the path is certified; else the first failing segment.
+    pub failure: Option<Failure>,
+    /// The exact end of each certified segment, in path order (the last one is
+    /// `L_max`, or absent for an unbounded ray).
+    pub breakpoints: Vec<BigRational>,
+    /// The largest relative difference between a float breakpoint (segment
+    /// end) and its exact value.
+    pub max_rel_diff: f64,
+    /// Segments checked.
+    pub segments: usize,
+    /// Pivots of the exact tableau.
+    pub pivots: usize,
+    /// Wall-clock seconds.
+    pub seconds: f64,
+}
+
+impl Certificate {
+    /// True if the path is certified.
+    pub fn certified(&self) -> bool {
+        self.failure.is_none()
+    }
+    /// One line: `certified (5 segments, ...)` or the failure.
+    pub fn summary(&self) -> String {
+        match &self.failure {
+            None => format!(
+                "certified: {} segments, exact breakpoints [{}], largest relative difference of the float breakpoints {:.1e}, {:.3} s",
+                self.segments,
+                self.breakpoints.iter().map(short).collect::<Vec<_>>().join(", "),
+                self.max_rel_diff,
+                self.seconds
+            ),
+            Some(f) => format!("rejected at segment {}: {}", f.segment, f.reason),
+        }
+    }
+    /// As JSON: `{"certified", "failure": {"segment", "reason"} or null,
+    /// "breakpoints": ["4", "13/3", ...], "breakpoints_f64": [...],
+    /// "max_rel_diff", "segments", "pivots", "seconds"}`.
+    pub fn to_json(&self) -> serde_json::Value {
+        serde_json::json!({
+            "certified": self.certified(),
+            "failure": self.failure.as_ref().map(|f| serde_json::json!({
+                "segment": f.segment, "reason": f.reason })),
+            "breakpoints": self.breakpoints.iter().map(short).collect::<Vec<_>>(),
+            "breakpoints_f64": self.breakpoints.iter().map(rational_to_f64).collect::<Vec<_>>(),
+            "max_rel_diff": self.max_rel_diff,
+            "segments": self.segments,
+            "pivots": self.pivots,
+            "seconds": self.seconds,
+        })
+    }
+}
+
+/// Checks `path` exactly against `problem` (see the module documentation):
+/// the answer is [`Certificate::certified`] or names the first segment that
+/// fails and why. Works for every precision, form and storage (a sparse `M`
+/// is read through its dense copy). The cost is one exact pivot per basis
+/// change, each `O((p + n)^2)` operations on integers of up to the size of
+/// the basis' minors (see `docs/certification.md`).
+pub fn certify<T: Scalar>(problem: &Plcp<T>, path: &Path<T>) -> Certificate {
+    let timer = Instant::now();
+    let mut cert = Certificate::default();
+    let result = run(problem, path, &mut cert);
+    cert.failure = result.err();
+    cert.seconds = timer.elapsed().as_secs_f64();
+    cert
+}
+
+impl<T: Scalar> Path<T> {
+    /// [`certify`] this path against the problem it solves.
+    pub fn certify(&self, problem: &Plcp<T>) -> Certificate {
+        certify(problem, self)
+    }
+}
+
+/// The exact interval `[lo, hi]` (`None`: unbounded that way) on which every
+/// basic `z`, `w` is nonnegative, or the variable that is negative everywhere.
+type Interval = (Option<BigRational>, Option<BigRational>);
+
+fn interval(t: &Tableau) -> Result<Interval, String> {
+    let (mut lo, mut hi): Interval = (None, None);
+    for i in 0..t.basis.len() {
+        let c = t.basis[i];
+        if c >= t.ncol() {
+            // an artificial of a dependent equality row: the row must be 0 = 0
+            let (a, b) = t.affine(i);
+            if !a.is_zero() || !b.is_zero() {
+                return Err(format!(
+                    "equality row {} cannot hold with this basis (it reads 0 = {} + L {})",
+                    c - t.ncol(),
+                    short(&a),
+                    short(&b)
+                ));
+            }
+            continue;
+        }
+        if !t.signed(c) {
+            continue;
+        }
+        let (a, b) = t.affine(i);
+        let var = t.var_of(c).expect("a z or w column");
+        if b.is_zero() {
+            if a.is_negative() {
+                return Err(format!("{var} = {} < 0 for every L", short(&a)));
+            }
+        } else {
+            let root = -a / &b;
+            if b.is_positive() {
+                if lo.as_ref().is_none_or(|l| &root > l) {
+                    lo = Some(root);
+                }
+            } else if hi.as_ref().is_none_or(|h| &root < h) {
+                hi = Some(root);
+            }
+        }
+    }
+    if let (Some(l), Some(h)) = (&lo, &hi) {
+        if l > h {
+            return Err(format!(
+                "no L makes the basis feasible (its variables need L >= {} and L <= {})",
+                short(l),
+                short(h)
+            ));
+        }
+    }
+    Ok((lo, hi))
+}
+
+/// Pivots the variables of `target` into the basis (each replacing a basic
+/// variable outside `target`); those that cannot enter stay at zero.
+fn pivot_to(t: &mut Tableau, target: &[usize], pivots: &mut usize) {
+    let mut want = vec![false; t.ncol() + t.basis.len()];
+    for &c in target {
+        want[c] = true;
+    }
+    for &c in target {
+        if t.basic[c] {
+            continue;
+        }
+        let row = (0..t.basis.len())
+            .filter(|&r| !want[t.basis[r]] && !t.rows[r][c].is_zero())
+            .min_by_key(|&r| t.rows[r][c].bits());
+        if let Some(r) = row {
+            t.pivot(r, c);
+            *pivots += 1;
+        }
+    }
+}
+
+/// `err <= limit`, false for NaN (an unmeasurable difference fails).
+fn within(err: f64, limit: f64) -> bool {
+    err <= limit
+}
+
+/// A named group of variables: name, first column, count, values, slopes.
+type Group<'a, T> = (&'a str, usize, usize, &'a faer::Col<T>, &'a faer::Col<T>);
+
+/// Compares the float values of segment `seg` with the exact ones of the
+/// basis in `t`, at the exact start and end (the slopes for an unbounded
+/// segment), relative to the largest entry of each vector.
+fn check_values<T: Scalar>(
+    t: &Tableau,
+    seg: &crate::path::Segment<T>,
+    start: &BigRational,
+    end: Option<&BigRational>,
+    u_unique: bool,
+    limit: f64,
+) -> Result<(), String> {
+    let (p, n) = (t.p, t.n);
+    let from = to_rational(seg.lambda_from);
+    let groups: [Group<'_, T>; 3] = [
+        ("z", p, n, &seg.z_from, &seg.dz),
+        ("w", p + n, n, &seg.w_from, &seg.dw),
+        ("u", 0, if u_unique { p } else { 0 }, &seg.u_from, &seg.du),
+    ];
+    let mut at = vec![start.clone()];
+    if let Some(e) = end {
+        at.push(e.clone());
+    }
+    // one scale for the whole segment: its largest exact value at either end,
+    // or slope times max(1, |L|), over z, w and u (a vector that is zero at
+    // one end, as at a degenerate start, is measured against the rest)
+    let mut scale = 0.0f64;
+    for (_, c0, len, _, dx) in groups {
+        for l in &at {
+            let lf = rational_to_f64(l).abs().max(1.0);
+            for i in 0..len {
+                scale = scale
+                    .max(rational_to_f64(&t.value(c0 + i, l)).abs())
+                    .max(dx[i].to_f64().abs() * lf);
+            }
+        }
+    }
+    if scale == 0.0 || !scale.is_finite() {
+        return Ok(());
+    }
+    for (name, c0, len, x_from, dx) in groups {
+        for l in &at {
+            // the float value at the exact L, from the segment's affine form
+            let dl = rational_to_f64(&(l - &from));
+            let exact: Vec<f64> = (0..len)
+                .map(|i| rational_to_f64(&t.value(c0 + i, l)))
+                .collect();
+            let float: Vec<f64> = (0..len)
+                .map(|i| x_from[i].to_f64() + dx[i].to_f64() * dl)
+                .collect();
+            let (i, err) = (0..len)
+                .map(|i| (i, (exact[i] - float[i]).abs() / scale))
+                .fold((0, 0.0), |a, b| if b.1 > a.1 { b } else { a });
+            if !within(err, limit) {
+                return Err(format!(
+                    "the float {name}{i} = {:e} at L = {} differs from the exact {:e} by {err:.1e} of the solution's scale {scale:.1e} (> sqrt(eps) = {limit:.1e})",
+                    float[i],
+                    short(l),
+                    exact[i]
+                ));
+            }
+        }
+        if end.is_none() && seg.unbounded {
+            // the slopes (the ray's direction)
+            let one = BigRational::from_integer(1.into());
+            let exact: Vec<f64> = (0..len)
+                .map(|i| {
+                    rational_to_f64(&(t.value(c0 + i, &(start + &one)) - t.value(c0 + i, start)))
+                })
+                .collect();
+            for i in 0..len {
+                let err = (exact[i] - dx[i].to_f64()).abs() / scale;
+                if !within(err, limit) {
+                    return Err(format!(
+                        "the float slope d{name}{i}/dL = {:e} of the unbounded segment differs from the exact {:e}",
+                        dx[i].to_f64(),
+                        exact[i]
+                    ));
+                }
+            }
+        }
+    }
+    Ok(())
+}
+
+/// The value of the basic or nonbasic variable `v` at `lambda`.
+fn value_at(t: &Tableau, v: Var, lambda: &BigRational) -> BigRational {
+    match t.col_of(v) {
+        Some(c) => t.value(c, lambda),
+        None => BigRational::zero(),
+    }
+}
+
+fn run<T: Scalar>(
+    problem: &Plcp<T>,
+    path: &Path<T>,
+    cert: &mut Certificate,
+) -> Result<(), Failure> {
+    let (p, n) = (problem.free(), problem.n());
+    let mut t = Tableau::new(problem);
+    let left = t.pivot_in_free();
+    cert.pivots += p - left;
+    // with a singular free block `u` is not unique: its values are not compared
+    let u_unique = left == 0;
+    let limit = T::eps().to_f64().sqrt();
+    let fail = |segment: usize, reason: String| Failure { segment, reason };
+    let lambda_max = path.lambda_max.map(to_rational);
+    let mut start = to_rational(path.lambda0);
+    let nseg = path.segments.len();
+    if nseg == 0 {
+        // a path without segments claims a solution at L0 only: certify the
+        // basis of its end point (z_i basic where z_i > w_i)
+        if path.status.is_success() {
+            let basis: Vec<usize> = (0..n)
+                .map(|i| {
+                    let v = if path.end.z[i] > path.end.w[i] {
+                        Var::Z(i)
+                    } else {
+                        Var::W(i)
+                    };
+                    t.col_of(v).expect("a pair")
+                })
+                .chain(0..p)
+                .collect();
+            pivot_to(&mut t, &basis, &mut cert.pivots);
+            let (lo, hi) = interval(&t).map_err(|r| fail(0, r))?;
+            if lo.as_ref().is_some_and(|l| l > &start) || hi.as_ref().is_some_and(|h| h < &start) {
+                return Err(fail(
+                    0,
+                    format!(
+                        "the end point's basis is infeasible at L0 = {}",
+                        short(&start)
+                    ),
+                ));
+            }
+        }
+        return Ok(());
+    }
+    for (k, seg) in path.segments.iter().enumerate() {
+        // 1. a complementary basis
+        let mut seen = vec![0u8; n];
+        for v in &seg.basis {
+            match *v {
+                Var::Z(i) | Var::W(i) if i < n => seen[i] += 1,
+                Var::U(j) if j < p => {}
+                other => return Err(fail(k, format!("{other} cannot be in a segment's basis"))),
+            }
+        }
+        if let Some(i) = seen.iter().position(|&s| s != 1) {
+            return Err(fail(
+                k,
+                format!(
+                    "the basis is not complementary: pair {i} appears {} times",
+                    seen[i]
+                ),
+            ));
+        }
+        // Lemke on the Schur reduction lists z and w only (every u basic);
+        // Wolfe's long form lists the basic u (the others held at zero, their
+        // dependent rows kept by artificial variables)
+        let all_u = !seg.basis.iter().any(|v| matches!(v, Var::U(_)));
+        let target: Vec<usize> = seg
+            .basis
+            .iter()
+            .map(|v| t.col_of(*v).expect("checked"))
+            .chain((0..p).filter(|_| all_u))
+            .collect();
+        pivot_to(&mut t, &target, &mut cert.pivots);
+        let start_k = start.clone();
+        // 2. feasible where it starts
+        let (lo, hi) = interval(&t).map_err(|r| fail(k, r))?;
+        let below = lo.as_ref().is_some_and(|l| l > &start);
+        let above = hi.as_ref().is_some_and(|h| h < &start);
+        if below || above {
+            let bad = (0..t.basis.len())
+                .filter(|&i| t.signed(t.basis[i]))
+                .find(|&i| {
+                    let (a, b) = t.affine(i);
+                    (a + b * &start).is_negative()
+                })
+                .and_then(|i| t.var_of(t.basis[i]))
+                .map_or(String::new(), |v| {
+                    format!(" ({v} = {} there)", short(&value_at(&t, v, &start)))
+                });
+            return Err(fail(
+                k,
+                format!(
+                    "the basis is infeasible where the segment starts, L = {}{bad}; it is feasible on [{}, {}]",
+                    short(&start),
+                    lo.as_ref().map_or("-inf".into(), short),
+                    hi.as_ref().map_or("inf".into(), short)
+                ),
+            ));
+        }
+        // 3. where it ends
+        let up = seg.lambda_to >= seg.lambda_from;
+        let last = k + 1 == nseg;
+        let end_float = seg.lambda_to.to_f64();
+        let end = if seg.unbounded {
+            if let Some(h) = &hi {
+                return Err(fail(
+                    k,
+                    format!("claimed to hold for every larger L, but a basic variable reaches zero at L = {}", short(h)),
+                ));
+            }
+            None
+        } else if last && path.status == Status::Reached && lambda_max.is_some() {
+            let lm = lambda_max.clone().expect("checked");
+            if hi.as_ref().is_some_and(|h| h < &lm) {
+                return Err(fail(
+                    k,
+                    format!(
+                        "the path claims L_max = {} reached, but a basic variable reaches zero at L = {} before",
+                        short(&lm),
+                        short(hi.as_ref().expect("checked"))
+                    ),
+                ));
+            }
+            Some(lm)
+        } else {
+            let exact = if up { hi.clone() } else { lo.clone() };
+            match exact {
+                Some(e) => Some(e),
+                None if last && !path.status.is_success() => {
+                    // the path stopped here for another reason (pivot limit,
+                    // ill-conditioning): certify up to where it stopped
+                    Some(to_rational(seg.lambda_to))
+                }
+                None => {
+                    return Err(fail(
+                        k,
+                        format!(
+                            "no basic variable reaches zero as L {} from {}: the breakpoint at L = {end_float:e} does not exist exactly",
+                            if up { "rises" } else { "falls" },
+                            short(&start)
+                        ),
+                    ))
+                }
+            }
+        };
+        // the breakpoint's leaving variable must be zero at the exact end
+        if let Some(e) = &end {
+            if let Some(bp) = path.breakpoints.iter().find(|b| b.segment == k + 1) {
+                let lv = bp.leaving;
+                let in_basis = t.col_of(lv).is_some_and(|c| t.basic[c]);
+                if matches!(lv, Var::Z(_) | Var::W(_)) && in_basis {
+                    let v = value_at(&t, lv, e);
+                    if !v.is_zero() {
+                        return Err(fail(
+                            k,
+                            format!(
+                                "the breakpoint's leaving variable {lv} is {} at the segment's exact end L = {}, not zero (the float breakpoint is L = {:e})",
+                                short(&v),
+                                short(e),
+                                bp.lambda.to_f64()
+                            ),
+                        ));
+                    }
+                }
+            }
+            // the float breakpoint must be the exact one up to the working
+            // precision's trust level (sqrt(eps), as the residual guard)
+            let diff = rel_diff(end_float, e, &start);
+            if !within(diff, limit) && (!last || path.status.is_success()) {
+                return Err(fail(
+                    k,
+                    format!(
+                        "the segment ends exactly at L = {}, but the path puts its breakpoint at L = {end_float:e} (relative difference {diff:.1e} > sqrt(eps) = {limit:.1e} in {})",
+                        short(e),
+                        T::NAME
+                    ),
+                ));
+            }
+            cert.max_rel_diff = cert.max_rel_diff.max(diff);
+            cert.breakpoints.push(e.clone());
+            start = e.clone();
+        }
+        // the float values at both ends (slopes for an unbounded segment)
+        check_values(&t, seg, &start_k, end.as_ref(), u_unique, limit).map_err(|r| fail(k, r))?;
+        cert.segments += 1;
+    }
+    // the end the status claims
+    let last = path.segments.last().expect("nseg > 0");
+    if path.status == Status::UnboundedRay && !last.unbounded {
+        return Err(fail(
+            nseg,
+            "status unbounded_ray, but the last segment is not unbounded".into(),
+        ));
+    }
+    if path.status == Status::Reached {
+        if let Some(lm) = &lambda_max {
+            if &start != lm {
+                return Err(fail(
+                    nseg,
+                    format!(
+                        "status reached, but the path ends at L = {} before L_max = {}",
+                        short(&start),
+                        short(lm)
+                    ),
+                ));
+            }
+        }
+    }
+    Ok(())
+}
