@@ -235,9 +235,50 @@ fn solve_checked(
             ));
         }
     }
-    match options.precision {
-        Precision::F32 => solve_in::<f32>(system, options, escalate, certify),
-        Precision::F64 => solve_in::<f64>(system, options, escalate, certify),
-        Precision::F128 => solve_in::<faer::fx128>(system, options, false, certify),
+    let floats = match options.precision {
+        Precision::F32 => solve_in::<f32>(system, options, escalate, certify)?,
+        Precision::F64 => solve_in::<f64>(system, options, escalate, certify)?,
+        Precision::F128 => solve_in::<faer::fx128>(system, options, false, certify)?,
+    };
+    Ok(escalate_to_exact(system, options, escalate, floats))
+}
+
+/// The largest system (unknowns `beta + s + p`) that the escalation hands to
+/// exact arithmetic on its own when the floats end `ill_conditioned`: the
+/// exact tracer's cost grows like `dim^2` big-integer operations a pivot on
+/// integers of up to `60 dim` bits (`docs/certification.md`), a few seconds
+/// at this size.
+pub const EXACT_ESCALATION_MAX_DIM: usize = 64;
+
+/// The last step of the escalation (f64, then fx128, then exact): a path
+/// that still ends `ill_conditioned` after the float precisions is traced
+/// again from `L0` in exact rational arithmetic ([`solve_exact`]) when the
+/// system is small enough ([`EXACT_ESCALATION_MAX_DIM`]) and its free block
+/// has full rank; the exact path (certified) replaces the float one and its
+/// message says which precisions failed and why. Otherwise the float answer
+/// stands, with its honest status.
+fn escalate_to_exact(
+    system: &System,
+    options: &SolveOptions,
+    escalate: bool,
+    floats: Solution,
+) -> Solution {
+    let dim = system.sizes().free() + system.sizes().modes;
+    if !escalate || floats.status != Status::IllConditioned || dim > EXACT_ESCALATION_MAX_DIM {
+        return floats;
+    }
+    let precisions = match &floats.info.escalation {
+        Some(_) => format!("{} and fx128", floats.info.precision),
+        None => floats.info.precision.to_string(),
+    };
+    match solve_exact(system, options) {
+        Ok(mut exact) if exact.status.is_success() => {
+            exact.message = format!(
+                "traced in exact rational arithmetic from L0: {precisions} ended ill_conditioned at Lambda = {:.6e} ({}). {}",
+                floats.lambda_reached, floats.message, exact.message
+            );
+            exact
+        }
+        Ok(_) | Err(_) => floats,
     }
 }

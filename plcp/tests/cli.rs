@@ -342,7 +342,7 @@ fn bad_command_lines() {
     let good = good.to_str().unwrap();
     fails(
         &["solve", good, "--precision", "f16"],
-        &["unknown precision 'f16'", "f32, f64 or f128"],
+        &["unknown precision 'f16'", "f32, f64, f128 or exact"],
     );
     fails(
         &["solve", good, "--method", "simplex"],
