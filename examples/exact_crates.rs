@@ -15,6 +15,7 @@
 //! ```
 
 use dashu_int::ops::BitTest;
+use plcp::exact::decode;
 use rand::{Rng, SeedableRng};
 use std::time::Instant;
 
@@ -53,23 +54,6 @@ impl Big for dashu_int::IBig {
     fn bits(&self) -> u64 {
         dashu_int::ops::UnsignedAbs::unsigned_abs(self.clone()).bit_len() as u64
     }
-}
-
-/// `x = mantissa * 2^exp`, exactly.
-fn decode(x: f64) -> (i64, i32) {
-    if x == 0.0 {
-        return (0, 0);
-    }
-    let bits = x.to_bits();
-    let sign = if bits >> 63 == 0 { 1 } else { -1 };
-    let e = ((bits >> 52) & 0x7ff) as i32;
-    let frac = (bits & 0xf_ffff_ffff_ffff) as i64;
-    let (m, e) = if e == 0 {
-        (frac, -1074)
-    } else {
-        (frac | (1 << 52), e - 1075)
-    };
-    (sign * m, e)
 }
 
 /// Bareiss elimination of `[M | q | d]` (rows scaled to integers); returns

@@ -263,7 +263,8 @@ fn escalate_to_exact(
     escalate: bool,
     floats: Solution,
 ) -> Solution {
-    let dim = system.sizes().free() + system.sizes().modes;
+    let sizes = system.sizes();
+    let dim = sizes.free() + sizes.modes;
     if !escalate || floats.status != Status::IllConditioned || dim > EXACT_ESCALATION_MAX_DIM {
         return floats;
     }

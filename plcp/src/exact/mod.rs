@@ -49,8 +49,8 @@ use num_bigint::BigInt;
 use num_rational::BigRational;
 use num_traits::{Signed, ToPrimitive, Zero};
 
-/// `x = mantissa * 2^exp` exactly, for a finite `f64`.
-pub(crate) fn decode(x: f64) -> (i64, i32) {
+/// `x = mantissa * 2^exp` exactly, for a finite `f64` (`(0, 0)` for zero).
+pub fn decode(x: f64) -> (i64, i32) {
     if x == 0.0 {
         return (0, 0);
     }
