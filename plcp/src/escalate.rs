@@ -113,6 +113,7 @@ fn settings_fx128<T: Scalar>(s: &Settings<T>, warm: Option<Vec<Var>>) -> Setting
         basis: s.basis,
         warm_basis: warm,
         escalate: false,
+        threads: s.threads,
     }
 }
 
@@ -247,7 +248,7 @@ pub(crate) fn continue_in_fx128<T: Scalar>(
         // solve would fall back to a whole cold trace) costs one factorisation
         let mut probe_settings = settings_fx128(settings, Some(basis.clone()));
         probe_settings.max_pivots = Some(1);
-        let probe = crate::solve(&pr, &probe_settings).map_err(|e| e.to_string())?;
+        let probe = crate::trace::trace(&pr, &probe_settings).map_err(|e| e.to_string())?;
         if !probe.info.warm_start {
             return Err(format!(
                 "fx128 did not accept the basis at L = {:e}: {}",
@@ -255,8 +256,8 @@ pub(crate) fn continue_in_fx128<T: Scalar>(
                 probe.info.warm_start_note
             ));
         }
-        let rest =
-            crate::solve(&pr, &settings_fx128(settings, Some(basis))).map_err(|e| e.to_string())?;
+        let rest = crate::trace::trace(&pr, &settings_fx128(settings, Some(basis)))
+            .map_err(|e| e.to_string())?;
         // the basis is feasible at the restart point; it is the path's basis
         // at L_k only if it stays feasible back to L_k (affine: at L_k), else
         // the true path has events between L_k and the restart point, which
@@ -293,7 +294,7 @@ pub(crate) fn continue_in_fx128<T: Scalar>(
         }
         Err(why) => {
             escalation.note = why;
-            match crate::solve(&wide, &settings_fx128(settings, None)) {
+            match crate::trace::trace(&wide, &settings_fx128(settings, None)) {
                 Ok(rest) => (0, rest),
                 Err(e) => {
                     path.message = format!(

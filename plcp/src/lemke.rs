@@ -286,7 +286,7 @@ fn polish_segment<T: Scalar>(problem: &Plcp<T>, seg: &mut crate::path::Segment<T
 fn solve_standard<T: Scalar>(
     problem: &Plcp<T>,
     settings: &Settings<T>,
-    method: &'static str,
+    label: &'static str,
 ) -> Path<T> {
     let n = problem.n();
     let start: Vec<Var> = (0..n).map(Var::W).collect();
@@ -299,7 +299,8 @@ fn solve_standard<T: Scalar>(
         problem.lambda_max(),
         start,
         settings,
-        method,
+        crate::settings::Method::Lemke,
+        label,
         Default::default(),
     )
 }

@@ -72,7 +72,9 @@ pub mod residual;
 pub mod scalar;
 pub mod scaling;
 pub mod settings;
+mod sparse_lu;
 pub mod tolerance;
+mod trace;
 pub mod wolfe;
 
 pub use error::PlcpError;
@@ -94,16 +96,15 @@ pub use settings::{BasisKind, Method, Settings, DEFAULT_REFACTOR_PERIOD};
 /// problem whose free block is singular (use [`Method::Wolfe`] there). Every
 /// outcome of the algorithm itself is a [`Status`] in the returned path.
 pub fn solve<T: Scalar>(problem: &Plcp<T>, settings: &Settings<T>) -> Result<Path<T>, PlcpError> {
-    let mut path = solve_unchecked(problem, settings)?;
-    guard_residual(&mut path);
+    let mut path = trace::trace(problem, settings)?;
     if settings.escalate && escalate::needs_fx128(&path) {
         escalate::continue_in_fx128(problem, settings, &mut path);
         if path.info.escalation.is_some() {
             // the spliced path: start and end measured on the original problem,
             // the breakpoints keep the residuals their precision measured
             let both_ends = settings.method == Method::Lemke && problem.free() > 0;
-            measure(problem, &mut path, both_ends);
-            guard_residual(&mut path);
+            trace::measure(problem, &mut path, both_ends);
+            trace::guard_residual(&mut path);
         }
     }
     Ok(path)
@@ -174,110 +175,4 @@ fn reject_uncertified<T: Scalar>(path: &mut Path<T>, cert: &Certificate) {
         }
     }
     path.ray = None;
-}
-
-/// A path that claims success must satisfy the problem: if its largest residual
-/// (measured on the original problem) exceeds `sqrt(eps)`, the status becomes
-/// `IllConditioned` with the evidence, never a confident wrong answer.
-fn guard_residual<T: Scalar>(path: &mut Path<T>) {
-    let limit = T::eps().to_f64().sqrt();
-    let worst = path.info.residual.worst();
-    if path.status.is_success() && (worst.is_nan() || worst > limit) {
-        path.message = format!(
-            "the path's largest residual {worst:.3e} (equation {:.1e}, feasibility {:.1e}, complementarity {:.1e}) exceeds sqrt(eps) = {limit:.1e} in {}: the answer cannot be trusted; try a higher precision. {}",
-            path.info.residual.equation,
-            path.info.residual.feasibility,
-            path.info.residual.complementarity,
-            T::NAME,
-            path.message
-        );
-        path.status = Status::IllConditioned;
-        // nothing beyond the last finite point is claimed any more
-        if let Some(seg) = path.segments.last_mut() {
-            if seg.unbounded {
-                seg.unbounded = false;
-                seg.lambda_to = seg.lambda_from;
-            }
-        }
-        if !path.lambda_reached.is_finite() {
-            path.lambda_reached = path.end.lambda;
-        }
-        path.ray = None;
-    }
-}
-
-fn measure<T: Scalar>(problem: &Plcp<T>, path: &mut Path<T>, whole: bool) {
-    if whole {
-        residual::measure_path(problem, path, true);
-    } else {
-        residual::measure_ends(problem, path);
-    }
-}
-
-fn solve_unchecked<T: Scalar>(
-    problem: &Plcp<T>,
-    settings: &Settings<T>,
-) -> Result<Path<T>, PlcpError> {
-    settings.validate(problem.n())?;
-    if let Some(b) = &settings.warm_basis {
-        let (p, dim) = (problem.free(), problem.dim());
-        let why = if b.len() != dim {
-            Some(format!("{} variables for {dim} rows (p + n)", b.len()))
-        } else {
-            b.iter().find_map(|v| match *v {
-                Var::U(j) | Var::Artificial(j) if j >= p => {
-                    Some(format!("{v} with only {p} free variables / equality rows"))
-                }
-                _ => None,
-            })
-        };
-        if let Some(why) = why {
-            return Err(PlcpError::Invalid {
-                what: "warm_basis".into(),
-                why,
-            });
-        }
-    }
-    let timer = std::time::Instant::now();
-    let eq = if settings.scaling {
-        scaling::Equilibration::ruiz(problem, 8)
-    } else {
-        scaling::Equilibration {
-            rows: vec![1.0; problem.dim()],
-            cols: vec![1.0; problem.dim()],
-        }
-    };
-    let scaled = if eq.is_identity() {
-        None
-    } else {
-        eq.scale(problem)
-    };
-    // segments of Lemke on the Schur reduction are re-solved one by one on the
-    // unreduced system: measure both ends of each
-    let both_ends = settings.method == Method::Lemke && problem.free() > 0;
-    let Some(scaled) = scaled else {
-        let mut path = match settings.method {
-            Method::Lemke => lemke::solve(problem, settings)?,
-            Method::Wolfe => wolfe::solve(problem, settings)?,
-        };
-        measure(problem, &mut path, both_ends);
-        path.info.solve_seconds = timer.elapsed().as_secs_f64();
-        return Ok(path);
-    };
-    // the covering vector acts on the rows of w: scale it with them, so the start
-    // phase follows the same path as on the unscaled problem
-    let (p, n) = (problem.free(), problem.n());
-    let mut scaled_settings = settings.clone();
-    scaled_settings.covering = Some(faer::Col::from_fn(n, |i| {
-        let c = settings.covering.as_ref().map_or(T::one(), |c| c[i]);
-        c * T::from_f64(eq.rows[p + i])
-    }));
-    let mut path = match settings.method {
-        Method::Lemke => lemke::solve(&scaled, &scaled_settings)?,
-        Method::Wolfe => wolfe::solve(&scaled, &scaled_settings)?,
-    };
-    eq.unscale(problem, &mut path);
-    measure(problem, &mut path, both_ends);
-    path.info.solve_seconds = timer.elapsed().as_secs_f64();
-    Ok(path)
 }

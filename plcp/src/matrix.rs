@@ -229,8 +229,12 @@ impl<T: Scalar> Csc<T> {
         if self.nrows != self.ncols {
             return None;
         }
-        let f =
-            crate::basis::SparseFactor::new(self.nrows, &self.col_ptr, &self.row_idx, &self.val)?;
+        let f = crate::sparse_lu::SparseFactor::new(
+            self.nrows,
+            &self.col_ptr,
+            &self.row_idx,
+            &self.val,
+        )?;
         let cond = f.condition();
         (cond.is_finite() && cond * T::eps().to_f64() < 1.0).then_some(cond)
     }

@@ -98,6 +98,13 @@ pub struct Settings<T: Scalar> {
     /// each precision. See [`crate::escalate`]. No effect in `fx128`.
     /// Default `false`.
     pub escalate: bool,
+    /// Threads for the large products of the block basis (its refactorisation
+    /// and the flush of pending updates). `Some(1)`: the calling thread only;
+    /// `Some(k)`: up to `k` threads of rayon's pool; `None` (default): by size,
+    /// the calling thread for products under [`crate::linalg::PAR_MIN_ENTRIES`]
+    /// entries and faer's global parallelism above (so everyday sizes never
+    /// wake a pool). The arithmetic, and so the path, is the same either way.
+    pub threads: Option<usize>,
 }
 
 /// The representation of the basis inverse (see [`crate::basis`]).
@@ -132,6 +139,7 @@ impl<T: Scalar> Default for Settings<T> {
             basis: BasisKind::Block,
             warm_basis: None,
             escalate: false,
+            threads: None,
         }
     }
 }
@@ -208,6 +216,12 @@ impl<T: Scalar> Settings<T> {
                     });
                 }
             }
+        }
+        if self.threads == Some(0) {
+            return Err(PlcpError::Invalid {
+                what: "threads".into(),
+                why: "must be at least 1".into(),
+            });
         }
         if self.max_pivots == Some(0) {
             return Err(PlcpError::Invalid {

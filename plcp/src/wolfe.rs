@@ -114,6 +114,7 @@ pub(crate) fn solve<T: Scalar>(
         problem.lambda_max(),
         basis,
         settings,
+        crate::settings::Method::Wolfe,
         "wolfe",
         info,
     );

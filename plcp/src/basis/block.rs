@@ -1,355 +1,8 @@
-//! The basis factorisation behind one small interface.
-//!
-//! A basis holds one variable per position; its columns are `-M[:, j]` for free
-//! and complementary `z` variables, `-d` for the parameter (the *matrix*
-//! columns), and unit vectors for slacks `w` and artificial variables (the
-//! *identity* columns). The pivoting core asks four things of it: solve
-//! `B y = a_v` for an entering column, solve `B y = e_k` (the lexicographic rule
-//! reads the basis inverse column by column), replace the variable at one
-//! position (a pivot), and rebuild from scratch (a refactorisation, which also
-//! estimates the condition number).
-//!
-//! Two representations:
-//!
-//! * [`DenseInverse`]: the explicit `(p+n) x (p+n)` inverse, updated in product
-//!   form; `O((p+n)^2)` per pivot whatever the basis. Simple, used as the
-//!   reference in tests.
-//! * [`BlockInverse`]: after permutation `B = [[S, 0], [C, I]]`, where the
-//!   identity columns cover their own rows and `S` is the small square block of
-//!   the matrix columns on the uncovered rows. Only `S^{-1}` (order `k`, the
-//!   number of basic matrix columns) is kept and updated by bordering and
-//!   Sherman-Morrison formulas; `B^{-1} a = (S^{-1} a_R, a_I - C S^{-1} a_R)` costs
-//!   `O(k^2 + (p+n) k)`. A pivot's rank-one update of `S^{-1}` is applied by
-//!   the next solve in the same pass over `S^{-1}` (see `Pending`). For a PLCP
-//!   whose active set stays small this is far cheaper than the dense inverse.
-//!   This is the default.
-//! * [`SparseLu`]: a sparse LU factorisation of `B` (faer's simplicial LU with
-//!   a COLAMD column order and partial pivoting), refactorised on the period,
-//!   with product-form (eta) updates in between; for sparse problems
-//!   ([`crate::Plcp::mixed_sparse`]) whose basis keeps many matrix columns
-//!   (Wolfe's long form keeps every free variable basic). See [`sparse`].
+//! The block basis: `B = [[S, 0], [C, I]]` after permutation, with only
+//! `S^{-1}` kept and updated by bordering and Sherman-Morrison formulas (the
+//! default; see the module documentation of [`crate::basis`]).
 
-mod sparse;
-
-pub(crate) use sparse::{SparseFactor, SparseLu};
-
-use crate::linalg::{matmul_par, matvec, par_for};
-use crate::matrix::MatrixRef;
-use crate::path::Var;
-use crate::scalar::Scalar;
-use crate::scaling::pow2;
-use crate::settings::DEFAULT_REFACTOR_PERIOD;
-use crate::tolerance::{REFINE_IDLE_EPS, REFINE_IDLE_RUN};
-use core::cell::{Cell, RefCell};
-use faer::reborrow::ReborrowMut;
-use faer::{Col, Mat, MatMut, MatRef};
-
-/// The column of variable `v` in the system `sum_v a_v v = q` (see [`crate::pivoting`]).
-pub(crate) fn var_column<T: Scalar>(m: MatrixRef<'_, T>, d: &Col<T>, p: usize, v: Var) -> Col<T> {
-    let dim = m.nrows();
-    let mut a = Col::zeros(dim);
-    match v {
-        Var::U(j) => m.for_col(j, |i, x| a[i] = -x),
-        Var::Z(j) => m.for_col(p + j, |i, x| a[i] = -x),
-        Var::W(i) => a[p + i] = T::one(),
-        Var::Artificial(k) => a[k] = T::one(),
-        Var::Lambda => {
-            for i in 0..dim {
-                a[i] = -d[i];
-            }
-        }
-    }
-    a
-}
-
-/// `B x = sum_r x_r a_{basis[r]}`, by system row.
-pub(crate) fn apply<T: Scalar>(
-    m: MatrixRef<'_, T>,
-    d: &Col<T>,
-    p: usize,
-    basis: &[Var],
-    x: &Col<T>,
-) -> Col<T> {
-    let dim = m.nrows();
-    let mut y = Col::<T>::zeros(dim);
-    let axpy = |y: &mut Col<T>, col: faer::ColRef<'_, T>, f: T| {
-        for i in 0..dim {
-            let v = y[i] - col[i] * f;
-            y[i] = v;
-        }
-    };
-    let axpy_m = |y: &mut Col<T>, j: usize, f: T| match m {
-        MatrixRef::Dense(m) => axpy(y, m.col(j), f),
-        MatrixRef::Sparse(_) => m.for_col(j, |i, mij| {
-            let v = y[i] - mij * f;
-            y[i] = v;
-        }),
-    };
-    for (r, v) in basis.iter().enumerate() {
-        let xr = x[r];
-        if xr == T::zero() {
-            continue;
-        }
-        match *v {
-            Var::U(j) => axpy_m(&mut y, j, xr),
-            Var::Z(j) => axpy_m(&mut y, p + j, xr),
-            Var::Lambda => axpy(&mut y, d.as_ref(), xr),
-            Var::W(i) => y[p + i] += xr,
-            Var::Artificial(k) => y[k] += xr,
-        }
-    }
-    y
-}
-
-/// The row an identity-column variable covers, or `None` for a matrix column.
-fn identity_row(p: usize, v: Var) -> Option<usize> {
-    match v {
-        Var::W(i) => Some(p + i),
-        Var::Artificial(k) => Some(k),
-        _ => None,
-    }
-}
-
-/// What a basis representation offers the pivoting core.
-pub(crate) trait BasisFactor<T: Scalar> {
-    /// Rebuilds for `basis` (one variable per position); returns a 1-norm
-    /// condition number estimate, or `None` if the basis is numerically singular.
-    fn refactor(&mut self, m: MatrixRef<'_, T>, d: &Col<T>, p: usize, basis: &[Var])
-        -> Option<f64>;
-    /// `B^{-1} a`, indexed by basis position.
-    fn solve(&self, a: &Col<T>) -> Col<T>;
-    /// `B^{-1} a_v`.
-    fn column(&self, m: MatrixRef<'_, T>, d: &Col<T>, p: usize, v: Var) -> Col<T> {
-        self.solve(&var_column(m, d, p, v))
-    }
-    /// `B^{-1} a` and `B x` together (`x` indexed by basis position, `B x` by
-    /// system row). Representations that keep the basic columns override it and
-    /// stream them once for both products (the residual at a breakpoint then
-    /// costs no extra pass over the matrix).
-    #[allow(clippy::too_many_arguments)]
-    fn solve_and_apply(
-        &self,
-        m: MatrixRef<'_, T>,
-        d: &Col<T>,
-        p: usize,
-        basis: &[Var],
-        a: &Col<T>,
-        x: &Col<T>,
-    ) -> (Col<T>, Col<T>) {
-        (self.solve(a), apply(m, d, p, basis, x))
-    }
-    /// `(B^{-1} a, B^{-1} b)`, consuming `a` and `b`: representations that
-    /// can override it to solve both in one sweep, in place (each result as
-    /// from its own [`Self::solve`]).
-    fn solve2(&self, a: Col<T>, b: Col<T>) -> (Col<T>, Col<T>) {
-        (self.solve(&a), self.solve(&b))
-    }
-    /// `B^{-1} e_k`.
-    fn unit(&self, k: usize) -> Col<T>;
-    /// Rows `rows` of `B^{-1}` (each indexed by system row), if this
-    /// representation computes them cheaper than the columns `B^{-1} e_k` the
-    /// lexicographic rule otherwise reads one by one; `None`: read columns.
-    fn inverse_rows(&self, rows: &[usize]) -> Option<Vec<Col<T>>> {
-        let _ = rows;
-        None
-    }
-    /// Asks the representation to refine its solves itself (one step of
-    /// iterative refinement inside every `B^{-1} a`) while `on`; returns true
-    /// if it does, false if the caller must refine (the default: never).
-    fn set_refine(&mut self, on: bool) -> bool {
-        let _ = on;
-        false
-    }
-    /// Whether a refactorisation is due after `since` pivots of updates, with
-    /// the user's refactorisation period `period` (`None`: the default, see
-    /// [`crate::Settings::refactor_period`]).
-    fn refactor_due(&self, since: usize, period: Option<usize>) -> bool {
-        since >= period.unwrap_or(DEFAULT_REFACTOR_PERIOD)
-    }
-    /// Whether the last solve was refined inside, when [`Self::set_refine`]
-    /// asked for it (a representation may skip refinement that does nothing).
-    /// Default: true.
-    fn last_solve_refined(&self) -> bool {
-        true
-    }
-    /// `B^{-T} c` for `c` indexed by basis position; the result is indexed by system row.
-    fn solve_transpose(&self, c: &Col<T>) -> Col<T>;
-    /// The variable at position `r` (now `leaving`) is replaced by `entering`,
-    /// with `y = B^{-1} a_entering` (so `y[r]` is the pivot).
-    #[allow(clippy::too_many_arguments)]
-    fn replace(
-        &mut self,
-        m: MatrixRef<'_, T>,
-        d: &Col<T>,
-        p: usize,
-        r: usize,
-        leaving: Var,
-        entering: Var,
-        y: &Col<T>,
-    ) -> bool;
-}
-
-fn norm1<T: Scalar>(a: MatRef<'_, T>) -> f64 {
-    let mut best = 0.0f64;
-    for j in 0..a.ncols() {
-        let mut s = 0.0f64;
-        for i in 0..a.nrows() {
-            s += a[(i, j)].to_f64().abs();
-        }
-        best = best.max(s);
-    }
-    best
-}
-
-/// Inverts a square matrix by LU with partial pivoting after scaling its
-/// columns by `1 / scale[j]` (powers of two, exact); `None` if numerically
-/// singular. Returns `B^{-1}` and the 1-norm condition number of the scaled
-/// matrix `B D`, `D = diag(1 / scale)`.
-///
-/// Why the scaled matrix: a basis mixes columns of very different sizes (the
-/// parameter column `-d` has a 1-norm of order `n`, a unit column 1), and
-/// `cond(B)` grows with that ratio although no solve loses accuracy to it
-/// (partial pivoting is blind to column scaling; `x = D (B D)^{-1} a` and the
-/// relative error of each component is governed by `cond(B D)`). With columns
-/// of unit 1-norm, `cond_1(B D)` is within a factor `dim` of the smallest over
-/// all column scalings (van der Sluis). The singularity test on the pivots of
-/// `U` is made on the scaled matrix for the same reason.
-fn invert<T: Scalar>(b: MatRef<'_, T>, scale: &[f64]) -> Option<(Mat<T>, f64)> {
-    let dim = b.nrows();
-    let sc: Vec<T> = scale.iter().map(|&s| T::from_f64(pow2(s))).collect();
-    let bs = Mat::from_fn(dim, dim, |i, j| b[(i, j)] / sc[j]);
-    let (mut inv, umax, umin) = crate::linalg::inverse(bs.as_ref())?;
-    if dim > 0 && umin <= umax * T::eps().to_f64() * dim as f64 {
-        return None;
-    }
-    let cond = norm1(bs.as_ref()) * norm1(inv.as_ref());
-    if !cond.is_finite() {
-        return None;
-    }
-    // B^{-1} = D (B D)^{-1}: row j divided by scale[j]
-    for c in 0..dim {
-        for (j, s) in sc.iter().enumerate() {
-            let v = inv[(j, c)] / *s;
-            inv[(j, c)] = v;
-        }
-    }
-    Some((inv, cond))
-}
-
-/// The 1-norm of each column.
-fn col_norms1<T: Scalar>(a: MatRef<'_, T>) -> Vec<f64> {
-    (0..a.ncols())
-        .map(|j| (0..a.nrows()).map(|i| a[(i, j)].to_f64().abs()).sum())
-        .collect()
-}
-
-/// `m[0..k, col] += u[0..k] * f`, over a contiguous column (vectorises).
-#[inline]
-fn col_axpy<T: Scalar>(m: &mut Mat<T>, col: usize, u: &[T], f: T) {
-    let k = u.len();
-    let dst = m
-        .col_mut(col)
-        .subrows_mut(0, k)
-        .try_as_col_major_mut()
-        .expect("an owned matrix is column-major")
-        .as_slice_mut();
-    for (d, &x) in dst.iter_mut().zip(u) {
-        *d += x * f;
-    }
-}
-
-/// Product-form update of an explicit inverse `inv` (top-left `k x k`) when
-/// column `r` of the matrix is replaced and `y = inv * a_new`.
-fn product_form_update<T: Scalar>(inv: &mut Mat<T>, k: usize, r: usize, y: &[T]) {
-    let piv = y[r];
-    for j in 0..k {
-        let f = inv[(r, j)] / piv;
-        if f != T::zero() {
-            col_axpy(inv, j, &y[..k], -f);
-        }
-        inv[(r, j)] = f;
-    }
-}
-
-/// Dense explicit inverse with product-form (rank-one) updates.
-pub(crate) struct DenseInverse<T: Scalar> {
-    inv: Mat<T>,
-}
-
-impl<T: Scalar> DenseInverse<T> {
-    pub(crate) fn new(dim: usize) -> Self {
-        Self {
-            inv: Mat::identity(dim, dim),
-        }
-    }
-}
-
-impl<T: Scalar> BasisFactor<T> for DenseInverse<T> {
-    fn refactor(
-        &mut self,
-        m: MatrixRef<'_, T>,
-        d: &Col<T>,
-        p: usize,
-        basis: &[Var],
-    ) -> Option<f64> {
-        let dim = m.nrows();
-        let mut b = Mat::<T>::zeros(dim, dim);
-        for (r, v) in basis.iter().enumerate() {
-            let a = var_column(m, d, p, *v);
-            for i in 0..dim {
-                b[(i, r)] = a[i];
-            }
-        }
-        let (inv, cond) = invert(b.as_ref(), &col_norms1(b.as_ref()))?;
-        self.inv = inv;
-        Some(cond)
-    }
-
-    fn solve(&self, a: &Col<T>) -> Col<T> {
-        matvec(self.inv.as_ref(), a.as_ref())
-    }
-
-    fn column(&self, m: MatrixRef<'_, T>, d: &Col<T>, p: usize, v: Var) -> Col<T> {
-        match v {
-            Var::W(_) | Var::Artificial(_) => {
-                self.unit(identity_row(p, v).expect("identity column"))
-            }
-            Var::Z(j) => match m {
-                MatrixRef::Dense(m) => -matvec(self.inv.as_ref(), m.col(p + j)),
-                MatrixRef::Sparse(_) => self.solve(&var_column(m, d, p, v)),
-            },
-            Var::U(j) => match m {
-                MatrixRef::Dense(m) => -matvec(self.inv.as_ref(), m.col(j)),
-                MatrixRef::Sparse(_) => self.solve(&var_column(m, d, p, v)),
-            },
-            Var::Lambda => -matvec(self.inv.as_ref(), d.as_ref()),
-        }
-    }
-
-    fn unit(&self, k: usize) -> Col<T> {
-        self.inv.col(k).to_owned()
-    }
-
-    fn solve_transpose(&self, c: &Col<T>) -> Col<T> {
-        matvec(self.inv.as_ref().transpose(), c.as_ref())
-    }
-
-    fn replace(
-        &mut self,
-        _m: MatrixRef<'_, T>,
-        _d: &Col<T>,
-        _p: usize,
-        r: usize,
-        _leaving: Var,
-        _entering: Var,
-        y: &Col<T>,
-    ) -> bool {
-        let dim = self.inv.nrows();
-        let ys: Vec<T> = (0..dim).map(|i| y[i]).collect();
-        product_form_update(&mut self.inv, dim, r, &ys);
-        true
-    }
-}
+use super::*;
 
 /// Where a basis position lives in the block representation.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -568,6 +221,8 @@ pub(crate) struct BlockInverse<T: Scalar> {
     idle: Cell<Idle>,
     /// [`SMALL_DIM`] (the unit tests lower it).
     small_dim: usize,
+    /// [`crate::Settings::threads`].
+    threads: Option<usize>,
     /// The basic matrix columns, `dim x k` (in `dim x c` allocated, see `reserve`).
     g: Mat<T>,
     /// Block column -> basis position.
@@ -585,6 +240,22 @@ impl<T: Scalar> BlockInverse<T> {
         Self::with_capacity(dim, INITIAL_CAPACITY)
     }
 
+    /// The same with the products spread as [`crate::Settings::threads`] says.
+    pub(crate) fn with_threads(mut self, threads: Option<usize>) -> Self {
+        self.threads = threads;
+        self
+    }
+
+    /// The parallelism of a product over `entries` entries: the calling thread
+    /// below [`crate::linalg::PAR_MIN_ENTRIES`] or with one thread asked for.
+    fn par(&self, entries: usize) -> faer::Par {
+        match (self.threads, par_for(entries)) {
+            (_, faer::Par::Seq) | (Some(1), _) => faer::Par::Seq,
+            (Some(k), _) => faer::Par::rayon(k),
+            (None, par) => par,
+        }
+    }
+
     /// A block basis with room for a block of order `cap` before it grows.
     fn with_capacity(dim: usize, cap: usize) -> Self {
         let cap = dim.min(cap);
@@ -599,6 +270,7 @@ impl<T: Scalar> BlockInverse<T> {
             refined: Cell::new(false),
             idle: Cell::new(Idle::default()),
             small_dim: SMALL_DIM,
+            threads: None,
             g: Mat::zeros(dim, cap),
             bpos: Vec::new(),
             rows: Vec::new(),
@@ -653,7 +325,7 @@ impl<T: Scalar> BlockInverse<T> {
                 acc,
             })
         };
-        match par_for(k * k) {
+        match self.par(k * k) {
             faer::Par::Seq => {
                 pass(lo, 0, acc_lo.as_deref_mut());
                 pass(hi, half, acc_hi.as_deref_mut());
@@ -863,7 +535,7 @@ impl<T: Scalar> BasisFactor<T> for BlockInverse<T> {
         let prod = matmul_par(
             self.g.as_ref().subcols(0, k),
             rhs.as_ref(),
-            par_for(self.dim * k),
+            self.par(self.dim * k),
         );
         let mut bx = Col::from_fn(self.dim, |i| prod[(i, 1)]);
         let sol = Col::from_fn(self.dim, |r| match self.slots[r] {

@@ -1,0 +1,463 @@
+//! The complementary pivoting core shared by both methods.
+//!
+//! The system is written with one column per variable,
+//!
+//! ```text
+//! sum_v a_v v = q,    a_{u_j} = -M[:, j],  a_{z_i} = -M[:, p+i],  a_{w_i} = e_{p+i},
+//!                     a_{art_k} = e_k,     a_L = -d,
+//! ```
+//!
+//! so that `M x + q + L d - (0, w) = 0`. A basis holds `p + n` variables. The
+//! path is followed by moving one nonbasic *driver* (the parameter `L`, or the
+//! complement of the variable that left last) while `L` is basic; every step ends
+//! with the lexicographic minimum-ratio rule choosing who leaves. Artificial
+//! variables (dependent equality rows, Wolfe long form) are fixed at zero: they
+//! block any step that would move them and, once out, never return.
+
+/// The pivot tolerance relative to the z/w rows (see `ratio_test`): off.
+const PIVOT_TOL_ON_COMP_ROWS: bool = false;
+/// The covering vector brought to the right-hand side's power of two: off.
+const SCALE_COVERING: bool = false;
+
+mod free;
+mod phases;
+mod ratio;
+mod refine;
+mod trace;
+
+pub(crate) use phases::{run_path, start_phase};
+
+use crate::basis::{apply, var_column, BasisFactor, BlockInverse, DenseInverse, SparseLu};
+use crate::matrix::MatrixRef;
+use crate::path::{Breakpoint, Point, Residual, Segment, Var};
+use crate::scalar::Scalar;
+use crate::settings::Settings;
+use core::cell::RefCell;
+use faer::Col;
+
+/// How a trace ended.
+pub(crate) enum TraceEnd<T: Scalar> {
+    /// `lambda_end` reached; the driver sits at `theta` (nonbasic, mid-step).
+    Reached { driver: Var, theta: T },
+    /// No blocking variable and `L` rises along the ray.
+    UnboundedRay { driver: Var, col: Col<T>, rate: T },
+    /// No blocking variable and `L` does not rise: no solution beyond here on this path.
+    SecondaryRay { driver: Var, col: Col<T>, rate: T },
+    /// Pivot limit.
+    PivotLimit,
+    /// Evidence of ill-conditioning.
+    IllConditioned(String),
+    /// No admissible continuation (no free variable can replace `L`).
+    Stalled(String),
+}
+
+/// What a trace records of the path (phase 2 only).
+pub(crate) struct Recorder<T: Scalar> {
+    pub segments: Vec<Segment<T>>,
+    pub breakpoints: Vec<Breakpoint<T>>,
+    pub turning_points: usize,
+    last_sign: i8,
+}
+
+impl<T: Scalar> Recorder<T> {
+    pub(crate) fn new() -> Self {
+        Self {
+            segments: Vec::new(),
+            breakpoints: Vec::new(),
+            turning_points: 0,
+            last_sign: 0,
+        }
+    }
+}
+
+pub(crate) struct Engine<'a, T: Scalar> {
+    m: MatrixRef<'a, T>,
+    pub p: usize,
+    pub n: usize,
+    dim: usize,
+    /// Right-hand side and parameter direction of the system being traced.
+    pub q: Col<T>,
+    pub d: Col<T>,
+    /// `(max_i |q_i|, max_i |d_i|)` ([`Self::xscale`]).
+    data_max: (T, T),
+    /// The rows where `d` is nonzero: the residual passes visit only these
+    /// of the column of `L` (a product with a zero entry changes no sum; a
+    /// load direction is often a single entry, the basis thousands of rows).
+    d_rows: Vec<usize>,
+    pub basis: Vec<Var>,
+    pos: Vec<Option<usize>>,
+    factor: Box<dyn BasisFactor<T>>,
+    pub x: Col<T>,
+    /// Current value of `L` (kept in step with `x` when `L` is basic).
+    pub lambda: T,
+    settings: &'a Settings<T>,
+    pub max_pivots: usize,
+    pub pivots: usize,
+    pub degenerate_pivots: usize,
+    pub refactorisations: usize,
+    /// Iterative-refinement steps taken (at breakpoints and on entering columns).
+    pub refinements: usize,
+    since_refactor: usize,
+    /// The last condition estimate says entering columns need a refinement step.
+    refine_columns: bool,
+    /// The last condition estimate says the basic values need residuals in the
+    /// wide type ([`crate::tolerance::WIDE_REFINE_COND_EPS`]).
+    refine_wide: bool,
+    /// The basis representation refines its own solves (cheaper than
+    /// [`Engine::refine_column`]: the block basis refines on `S` alone).
+    refine_inside: bool,
+    pub max_cond: f64,
+    pivot_tol: T,
+    /// Print every pivot to stderr (environment variable `PLCP_TRACE` set).
+    pub(crate) trace_pivots: bool,
+    /// The pivot tolerance times the basis condition estimate (clamped to
+    /// `[1, 1e6]`): entries of `B^{-1} a` below `noise * max|B^{-1} a|` are rounding.
+    noise: T,
+    tie_tol: T,
+    /// The last recorded breakpoint still owes its residual (measured with the
+    /// next entering column, in the same pass over the basic columns).
+    residual_owed: bool,
+    /// The accumulators of [`Self::wide_residual_pair`], kept between pivots
+    /// (two vectors of `p + n` wide values each time were a tenth of the
+    /// trace in page faults and zeroing).
+    wide_acc: RefCell<WideAccumulators<T>>,
+}
+
+/// The two accumulators of [`Engine::wide_residual_pair`] (values, column).
+type WideAccumulators<T> = (Vec<<T as Scalar>::Wide>, Vec<<T as Scalar>::Wide>);
+
+/// `max_i |v_i|` (zero for an empty slice) in four independent chains: a
+/// single chain of compares waits on each one, and the engine takes this
+/// maximum of vectors of length `p + n` several times per pivot.
+fn max_abs<T: Scalar>(v: &[T]) -> T {
+    let mut m = [T::zero(); 4];
+    let mut chunks = v.chunks_exact(4);
+    for c in &mut chunks {
+        for k in 0..4 {
+            m[k] = m[k].max(c[k].abs());
+        }
+    }
+    for &x in chunks.remainder() {
+        m[0] = m[0].max(x.abs());
+    }
+    m[0].max(m[1]).max(m[2].max(m[3]))
+}
+
+/// [`max_abs`] of a column.
+fn col_max_abs<T: Scalar>(c: &Col<T>) -> T {
+    match c.as_ref().try_as_col_major() {
+        Some(c) => max_abs(c.as_slice()),
+        None => c.iter().fold(T::zero(), |a, v| a.max(v.abs())),
+    }
+}
+
+/// The entries of a (contiguous) column.
+fn col_slice<T: Scalar>(c: &Col<T>) -> &[T] {
+    c.as_ref()
+        .try_as_col_major()
+        .expect("a column is contiguous")
+        .as_slice()
+}
+
+/// The entries of a (contiguous) column, mutable.
+fn col_slice_mut<T: Scalar>(c: &mut Col<T>) -> &mut [T] {
+    c.as_mut()
+        .try_as_col_major_mut()
+        .expect("a column is contiguous")
+        .as_slice_mut()
+}
+
+fn is_comp(v: Var) -> bool {
+    matches!(v, Var::W(_) | Var::Z(_))
+}
+
+impl<'a, T: Scalar> Engine<'a, T> {
+    fn var_index(&self, v: Var) -> usize {
+        let (n, p) = (self.n, self.p);
+        match v {
+            Var::W(i) => i,
+            Var::Z(i) => n + i,
+            Var::U(j) => 2 * n + j,
+            Var::Artificial(k) => 2 * n + p + k,
+            Var::Lambda => 3 * n + 2 * p,
+        }
+    }
+
+    /// A new engine on the basis `basis` with `L` nonbasic at `lambda`.
+    pub(crate) fn new(
+        m: MatrixRef<'a, T>,
+        p: usize,
+        q: Col<T>,
+        d: Col<T>,
+        basis: Vec<Var>,
+        lambda: T,
+        settings: &'a Settings<T>,
+    ) -> Result<Self, String> {
+        let dim = m.nrows();
+        let n = dim - p;
+        let data_max = Self::data_max(&q, &d);
+        let d_rows = Self::nonzero_rows(&d);
+        let mut e = Self {
+            m,
+            p,
+            n,
+            dim,
+            q,
+            d,
+            data_max,
+            d_rows,
+            basis: basis.clone(),
+            pos: vec![None; 3 * n + 2 * p + 1],
+            factor: match settings.basis {
+                crate::settings::BasisKind::Block => {
+                    Box::new(BlockInverse::new(dim).with_threads(settings.threads))
+                }
+                crate::settings::BasisKind::Dense => Box::new(DenseInverse::new(dim)),
+                crate::settings::BasisKind::Sparse => Box::new(SparseLu::new(dim)),
+            },
+            x: Col::zeros(dim),
+            lambda,
+            settings,
+            max_pivots: settings.max_pivots.unwrap_or(50 * dim + 1000),
+            pivots: 0,
+            degenerate_pivots: 0,
+            refactorisations: 0,
+            refinements: 0,
+            since_refactor: 0,
+            refine_columns: false,
+            refine_wide: false,
+            refine_inside: false,
+            max_cond: 1.0,
+            pivot_tol: T::from_f64(settings.pivot_tol_eps) * T::eps(),
+            noise: T::from_f64(settings.pivot_tol_eps) * T::eps(),
+            trace_pivots: std::env::var_os("PLCP_TRACE").is_some(),
+            tie_tol: T::from_f64(settings.tie_tol_eps) * T::eps(),
+            residual_owed: false,
+            wide_acc: RefCell::new((Vec::new(), Vec::new())),
+        };
+        for (r, v) in basis.iter().enumerate() {
+            let k = e.var_index(*v);
+            e.pos[k] = Some(r);
+        }
+        e.refactor()?;
+        e.refactorisations = 0;
+        Ok(e)
+    }
+
+    pub(crate) fn row_of(&self, v: Var) -> Option<usize> {
+        self.pos[self.var_index(v)]
+    }
+
+    /// `B^{-1} a_v`: the change of the basic values per unit increase of `v` is its negative.
+    pub(crate) fn column(&self, v: Var) -> Col<T> {
+        self.factor.column(self.m, &self.d, self.p, v)
+    }
+
+    /// Rebuilds the factorisation and the basic values (drift correction).
+    pub(crate) fn refactor(&mut self) -> Result<(), String> {
+        let cond = self
+            .factor
+            .refactor(self.m, &self.d, self.p, &self.basis)
+            .ok_or_else(|| {
+                format!(
+                    "the basis became numerically singular at L = {:e} after {} pivots",
+                    self.lambda.to_f64(),
+                    self.pivots
+                )
+            })?;
+        self.refactorisations += 1;
+        self.since_refactor = 0;
+        self.max_cond = self.max_cond.max(cond);
+        self.refine_columns = cond * T::eps().to_f64() > self.settings.refine_cond_eps;
+        // on a sparse M the wide residual is a pass over the stored entries
+        // (cheap): from the same threshold as the columns; on a dense M it
+        // costs O(n k) per use, and waits for WIDE_REFINE_COND_EPS
+        self.refine_wide = self.refine_columns
+            && (matches!(self.m, MatrixRef::Sparse(_))
+                || cond * T::eps().to_f64() > crate::tolerance::WIDE_REFINE_COND_EPS);
+        // off for every solve but the entering column's (see trace_steps)
+        self.refine_inside = self.factor.set_refine(false);
+        self.noise = self.pivot_tol * T::from_f64(cond.clamp(1.0, 1e6));
+        let rhs = self.rhs();
+        let xnew = self.factor.solve(&rhs);
+        // snap tiny negatives of sign-constrained basics (drift) to zero
+        let scale = self.xscale();
+        for r in 0..self.dim {
+            let mut v = xnew[r];
+            if is_comp(self.basis[r]) && v < T::zero() && -v <= self.tie_tol * scale {
+                v = T::zero();
+            }
+            if matches!(self.basis[r], Var::Artificial(_)) && v.abs() <= self.tie_tol * scale {
+                v = T::zero();
+            }
+            self.x[r] = v;
+        }
+        if let Some(l) = self.row_of(Var::Lambda) {
+            // L stays the path's exact parameter; the recomputed value measures drift
+            self.x[l] = self.lambda;
+        }
+        if cond * T::eps().to_f64() > self.settings.max_cond_eps {
+            return Err(format!(
+                "basis condition number estimate {cond:.3e} at L = {:e} exceeds {:.1e}/eps ({}): results would not be accurate in this precision; use a higher precision",
+                self.lambda.to_f64(),
+                self.settings.max_cond_eps,
+                T::NAME
+            ));
+        }
+        Ok(())
+    }
+
+    /// Why the current basic solution is not a feasible start (a basic `z` or `w`
+    /// negative, or an artificial variable nonzero, beyond the tie tolerance), or
+    /// `None` if it is one.
+    pub(crate) fn infeasibility(&self) -> Option<String> {
+        let scale = self.xscale();
+        let tol = self.tie_tol * scale;
+        (0..self.dim).find_map(|r| {
+            let v = self.basis[r];
+            let x = self.x[r];
+            let bad = match v {
+                Var::W(_) | Var::Z(_) => !x.is_finite() || x < -tol,
+                Var::Artificial(_) => !x.is_finite() || x.abs() > tol,
+                _ => !x.is_finite(),
+            };
+            bad.then(|| format!("{v} = {:e} at L = {:e}", x.to_f64(), self.lambda.to_f64()))
+        })
+    }
+
+    /// `q + L d` when `L` is nonbasic, `q` when it is basic.
+    fn rhs(&self) -> Col<T> {
+        if self.row_of(Var::Lambda).is_some() {
+            self.q.clone()
+        } else {
+            Col::from_fn(self.dim, |i| self.q[i] + self.lambda * self.d[i])
+        }
+    }
+
+    /// The scale of the basic values: `max(1, |q_i|, |L d_i|, |x_i|)` over
+    /// every row (`x` without `L`'s own position). `max_i |L d_i|` is
+    /// `|L| max_i |d_i|` exactly (rounding is monotone), so `q` and `d`
+    /// contribute their cached maxima and the pass is over `x` alone.
+    fn xscale(&self) -> T {
+        let s = T::one()
+            .max(self.data_max.0)
+            .max(self.lambda.abs() * self.data_max.1);
+        let x = self.x.as_ref().try_as_col_major().expect("contiguous");
+        let x = x.as_slice();
+        match self.row_of(Var::Lambda) {
+            Some(l) => s.max(max_abs(&x[..l])).max(max_abs(&x[l + 1..])),
+            None => s.max(max_abs(x)),
+        }
+    }
+
+    /// The rows `i` with `v_i != 0`.
+    fn nonzero_rows(v: &Col<T>) -> Vec<usize> {
+        (0..v.nrows()).filter(|&i| v[i] != T::zero()).collect()
+    }
+
+    /// `(max_i |q_i|, max_i |d_i|)`, cached for [`Self::xscale`].
+    fn data_max(q: &Col<T>, d: &Col<T>) -> (T, T) {
+        (col_max_abs(q), col_max_abs(d))
+    }
+
+    /// Values of `(z, w, u)` now, with `driver` at `theta`.
+    pub(crate) fn point(&self, driver: Option<(Var, T)>) -> Point<T> {
+        let mut z = Col::zeros(self.n);
+        let mut w = Col::zeros(self.n);
+        let mut u = Col::zeros(self.p);
+        let mut set = |v: Var, val: T| match v {
+            Var::W(i) => w[i] = val,
+            Var::Z(i) => z[i] = val,
+            Var::U(j) => u[j] = val,
+            _ => {}
+        };
+        for (r, v) in self.basis.iter().enumerate() {
+            set(*v, self.x[r]);
+        }
+        if let Some((v, t)) = driver {
+            set(v, t);
+        }
+        Point {
+            lambda: self.lambda,
+            z,
+            w,
+            u,
+        }
+    }
+
+    /// Slopes in `L` of `(z, w, u)` along a step of the driver with column `col` and `L`-rate `rate`.
+    fn slopes(&self, driver: Var, col: &Col<T>, rate: T) -> (Col<T>, Col<T>, Col<T>) {
+        let mut dz = Col::zeros(self.n);
+        let mut dw = Col::zeros(self.n);
+        let mut du = Col::zeros(self.p);
+        let mut set = |v: Var, val: T| match v {
+            Var::W(i) => dw[i] = val,
+            Var::Z(i) => dz[i] = val,
+            Var::U(j) => du[j] = val,
+            _ => {}
+        };
+        for (r, v) in self.basis.iter().enumerate() {
+            set(*v, -col[r] / rate);
+        }
+        set(driver, T::one() / rate);
+        (dz, dw, du)
+    }
+
+    fn segment_basis(&self, driver: Var) -> Vec<Var> {
+        let mut b = Vec::with_capacity(self.n + self.p);
+        for i in 0..self.n {
+            if self.row_of(Var::W(i)).is_some() || driver == Var::W(i) {
+                b.push(Var::W(i));
+            } else {
+                b.push(Var::Z(i));
+            }
+        }
+        for j in 0..self.p {
+            if self.row_of(Var::U(j)).is_some() {
+                b.push(Var::U(j));
+            }
+        }
+        b
+    }
+
+    fn record_segment(
+        &self,
+        rec: &mut Recorder<T>,
+        driver: Var,
+        col: &Col<T>,
+        rate: T,
+        lambda_to: T,
+        unbounded: bool,
+    ) {
+        // a segment starts with the driver at zero
+        let start = self.point(Some((driver, T::zero())));
+        let (dz, dw, du) = self.slopes(driver, col, rate);
+        rec.segments.push(Segment {
+            lambda_from: self.lambda,
+            lambda_to,
+            unbounded,
+            basis: self.segment_basis(driver),
+            z_from: start.z,
+            dz,
+            w_from: start.w,
+            dw,
+            u_from: start.u,
+            du,
+        });
+    }
+
+    pub(crate) fn tie_tol_value(&self) -> T {
+        self.tie_tol
+    }
+
+    /// Replaces the system's right-hand side and direction (phase change) and
+    /// recomputes the basic values with `L` nonbasic at `lambda`.
+    pub(crate) fn reset_system(&mut self, q: Col<T>, d: Col<T>, lambda: T) -> Result<(), String> {
+        self.data_max = Self::data_max(&q, &d);
+        self.d_rows = Self::nonzero_rows(&d);
+        self.q = q;
+        self.d = d;
+        self.lambda = lambda;
+        self.refactor()
+    }
+}

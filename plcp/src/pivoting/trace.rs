@@ -1,0 +1,298 @@
+//! The trace: phase 2 follows the path from a complementary basis feasible at
+//! the start value while `L` rises (or falls, past a turning point), one
+//! segment per basis, until `lambda_max`, a ray, or a status.
+//!
+//! `trace_steps` is one loop of about 240 lines, over the 150 the house style
+//! asks for: the driver, its column, the owed residual and the direction of `L`
+//! live in locals that every part of a step (ratio test, refinement, recording,
+//! the long form's moves) reads and updates; cut apart, each piece would take
+//! most of them as arguments, and the order of their updates is the algorithm.
+
+use super::*;
+
+impl<'a, T: Scalar> Engine<'a, T> {
+    /// Follows the path from the current basis (`L` nonbasic, driving) until
+    /// `lambda_end`, a ray, or a limit.
+    pub(crate) fn trace(
+        &mut self,
+        lambda_end: Option<T>,
+        mut rec: Option<&mut Recorder<T>>,
+    ) -> TraceEnd<T> {
+        let end = self.trace_steps(lambda_end, rec.as_deref_mut());
+        if self.residual_owed {
+            // only a pivot limit ends the trace between a breakpoint and the next
+            // column: the values are still those of the breakpoint
+            self.residual_owed = false;
+            let bx = apply(self.m, &self.d, self.p, &self.basis, &self.x);
+            let res = self.residual_of(&bx);
+            if let Some(b) = rec.and_then(|r| r.breakpoints.last_mut()) {
+                b.residual = res;
+            }
+        }
+        end
+    }
+
+    pub(super) fn trace_steps(
+        &mut self,
+        lambda_end: Option<T>,
+        mut rec: Option<&mut Recorder<T>>,
+    ) -> TraceEnd<T> {
+        let mut driver = Var::Lambda;
+        if self.row_of(Var::Lambda).is_some() {
+            return TraceEnd::Stalled("internal: trace must start with L nonbasic".into());
+        }
+        loop {
+            if self.pivots >= self.max_pivots {
+                return TraceEnd::PivotLimit;
+            }
+            // the entering column refined inside its solve, where the basis can
+            // (the block basis refines on S alone: no extra pass over the matrix)
+            let refine_here = self.refine_columns && self.refine_inside;
+            if refine_here {
+                self.factor.set_refine(true);
+            }
+            // the entering column's wide residual, when a pass for the values computed it
+            // and its correction (solved with the values' first correction)
+            let mut col_correction: Option<Col<T>> = None;
+            let mut col = match rec.as_deref_mut() {
+                Some(rec) if self.residual_owed => {
+                    let (col, res) = if self.refine_wide {
+                        // the wide residuals recompute B x: no working-precision
+                        // product; the first residual of the values and the
+                        // entering column's share one pass over the basic columns
+                        let col = self.column(driver);
+                        if refine_here {
+                            self.factor.set_refine(false);
+                        }
+                        let first = if self.refine_inside {
+                            None
+                        } else {
+                            // the two corrections are independent: one sweep
+                            // over the factors for both
+                            let (values, column) = self.wide_residual_pair(&self.x, driver, &col);
+                            let (dx, dc) = self.factor.solve2(values, column);
+                            col_correction = Some(dc);
+                            Some(dx)
+                        };
+                        (col, self.refine_values_wide(first))
+                    } else {
+                        let a = var_column(self.m, &self.d, self.p, driver);
+                        let (col, bx) = self.factor.solve_and_apply(
+                            self.m,
+                            &self.d,
+                            self.p,
+                            &self.basis,
+                            &a,
+                            &self.x,
+                        );
+                        if refine_here {
+                            self.factor.set_refine(false);
+                        }
+                        (col, self.refine_values(bx))
+                    };
+                    if let Some(b) = rec.breakpoints.last_mut() {
+                        b.residual = res;
+                    }
+                    self.residual_owed = false;
+                    // the residual guard of `crate::solve`, applied where the
+                    // evidence appears: a path that continued from a breakpoint
+                    // whose values fail their equations (drift beyond what
+                    // refinement repairs) could end in a wrong secondary ray,
+                    // which that guard does not downgrade
+                    let limit = T::eps().to_f64().sqrt();
+                    let worst = res.worst();
+                    if worst.is_nan() || worst > limit {
+                        return TraceEnd::IllConditioned(format!(
+                            "the basic solution at the breakpoint L = {:e} has residual {worst:.3e} (equation {:.1e}, feasibility {:.1e}, complementarity {:.1e}) above sqrt(eps) = {limit:.1e} in {} after refinement (basis condition estimate up to {:.1e}): the path is not continued; use a higher precision",
+                            self.lambda.to_f64(),
+                            res.equation,
+                            res.feasibility,
+                            res.complementarity,
+                            T::NAME,
+                            self.max_cond
+                        ));
+                    }
+                    col
+                }
+                _ => self.column(driver),
+            };
+            if refine_here {
+                self.factor.set_refine(false);
+            }
+            if self.refine_columns {
+                if self.refine_inside {
+                    // refined inside the solve above (unless the basis found
+                    // its refinement idle, see tolerance::REFINE_IDLE_EPS)
+                    self.refinements += usize::from(self.factor.last_solve_refined());
+                } else {
+                    self.refine_column(driver, &mut col, col_correction.take());
+                }
+            }
+            let colmax = col_max_abs(&col);
+            let rate = match driver {
+                Var::Lambda => T::one(),
+                _ => match self.row_of(Var::Lambda) {
+                    Some(l) => -col[l],
+                    None => T::zero(),
+                },
+            };
+            // (L driving itself has rate one; a column whose noise level reaches
+            // that (f32 at condition ~1e5) is not trusted to rise either: its
+            // ratio test could not see a block, so it ends as a stop)
+            let rate_tol = self.noise * colmax.max(T::one());
+            let rising = rate > rate_tol;
+            let moving = rate.abs() > rate_tol;
+            if !(0..self.dim).all(|i| col[i].is_finite() && self.x[i].is_finite()) {
+                return TraceEnd::IllConditioned(format!(
+                    "non-finite values at L = {:e} (overflow in the working precision {})",
+                    self.lambda.to_f64(),
+                    T::NAME
+                ));
+            }
+            let block = self.ratio_test(&col);
+            if let (true, Some(end)) = (rising, lambda_end) {
+                let theta_end = (end - self.lambda) / rate;
+                // a block at the end value (within the tie tolerance relative to
+                // the end value: no floor, the start phase's end may be tiny) is
+                // a tie, and ties go to the end: the start phase's artificial
+                // leaves, L_max is reached
+                let end_tol = self.tie_tol * end.abs().max(self.lambda.abs());
+                if block.as_ref().is_none_or(|(_, tb)| {
+                    theta_end <= *tb || end - (self.lambda + *tb * rate) <= end_tol
+                }) {
+                    let theta_end = theta_end.max(T::zero());
+                    if let Some(rec) = rec.as_deref_mut() {
+                        if theta_end > T::zero() {
+                            self.note_direction(rec, 1);
+                            self.record_segment(rec, driver, &col, rate, end, false);
+                        }
+                    }
+                    for r in 0..self.dim {
+                        let v = self.x[r] - theta_end * col[r];
+                        self.x[r] = v;
+                    }
+                    self.lambda = end;
+                    if let Some(l) = self.row_of(Var::Lambda) {
+                        self.x[l] = end;
+                    }
+                    return TraceEnd::Reached {
+                        driver,
+                        theta: theta_end,
+                    };
+                }
+            }
+            let Some((r, theta)) = block else {
+                if rising {
+                    if let Some(rec) = rec.as_deref_mut() {
+                        self.note_direction(rec, 1);
+                        self.record_segment(
+                            rec,
+                            driver,
+                            &col,
+                            rate,
+                            crate::scalar::infinity(),
+                            true,
+                        );
+                    }
+                    return TraceEnd::UnboundedRay { driver, col, rate };
+                }
+                return TraceEnd::SecondaryRay { driver, col, rate };
+            };
+            // the step; L is the path's independent variable, kept exactly as the
+            // segments record it (a drift of the basic L would open gaps)
+            // a change of L at the rounding level is no change (ties within the
+            // tie tolerance are ties): it would fake turning points
+            let dl = theta * rate;
+            let moving = moving && dl.abs() > self.tie_tol * self.lambda.abs().max(T::one());
+            let lambda_to = if moving {
+                self.lambda + dl
+            } else {
+                self.lambda
+            };
+            if let Some(rec) = rec.as_deref_mut() {
+                if moving && theta > T::zero() {
+                    let sign = if rate > T::zero() { 1 } else { -1 };
+                    self.note_direction(rec, sign);
+                    self.record_segment(rec, driver, &col, rate, lambda_to, false);
+                }
+            }
+            for i in 0..self.dim {
+                let v = self.x[i] - theta * col[i];
+                self.x[i] = v;
+            }
+            self.lambda = lambda_to;
+            if let Some(l) = self.row_of(Var::Lambda) {
+                self.x[l] = lambda_to;
+            }
+            let degenerate = theta == T::zero() || !moving;
+            if theta == T::zero() {
+                self.degenerate_pivots += 1;
+            }
+            let leaving = self.basis[r];
+            // the entering variable's value: the step length, or for L its level
+            let value = if driver == Var::Lambda {
+                self.lambda
+            } else {
+                theta
+            };
+            if let Err(msg) = self.pivot(r, driver, &col, value) {
+                return TraceEnd::IllConditioned(msg);
+            }
+            match leaving {
+                Var::W(_) | Var::Z(_) => {
+                    let next = leaving.complement().expect("complementary");
+                    if let Some(rec) = rec.as_deref_mut() {
+                        rec.breakpoints.push(Breakpoint {
+                            lambda: self.lambda,
+                            entering: next,
+                            leaving,
+                            degenerate,
+                            turning: false,
+                            segment: rec.segments.len(),
+                            residual: Residual::default(),
+                        });
+                        self.residual_owed = true;
+                    }
+                    driver = next;
+                }
+                Var::Artificial(_) => match self.unlock_lambda() {
+                    Ok(true) => driver = Var::Lambda,
+                    Ok(false) => {
+                        return TraceEnd::Stalled(format!(
+                            "at L = {:e} an equality row blocks the path and no free variable can take over: the path cannot be continued",
+                            self.lambda.to_f64()
+                        ))
+                    }
+                    Err(msg) => return TraceEnd::IllConditioned(msg),
+                },
+                Var::U(_) | Var::Lambda => {
+                    return TraceEnd::Stalled("internal: a free variable blocked".into())
+                }
+            }
+        }
+    }
+
+    pub(super) fn note_direction(&self, rec: &mut Recorder<T>, sign: i8) {
+        if rec.last_sign > 0 && sign < 0 {
+            rec.turning_points += 1;
+            if let Some(b) = rec.breakpoints.last_mut() {
+                b.turning = true;
+            }
+        }
+        rec.last_sign = sign;
+    }
+
+    /// After a phase ended with `driver` at `theta` and `L` basic: make the basis
+    /// complementary again by pivoting the driver in for `L` (which becomes nonbasic
+    /// at its current value).
+    pub(crate) fn settle(&mut self, driver: Var, theta: T) -> Result<(), String> {
+        if driver == Var::Lambda {
+            return Ok(());
+        }
+        let Some(l) = self.row_of(Var::Lambda) else {
+            return Ok(());
+        };
+        let col = self.column(driver);
+        self.pivot(l, driver, &col, theta)
+    }
+}
