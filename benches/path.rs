@@ -181,5 +181,56 @@ fn clarabel(c: &mut Criterion) {
     group.finish();
 }
 
-criterion_group!(benches, full_path, clarabel);
+/// Everyday sizes on one thread (issue 20): a tiny problem (n = 2, one pivot)
+/// through `plcp::solve`, the full path at n = 20 .. 200 with
+/// `Settings::threads = Some(1)`, and the MPC loop through `plcp::Solver`
+/// (n = 50, 100 steps of size 0.1, per call of the whole loop).
+///
+/// ```sh
+/// cargo bench --bench path -- everyday
+/// ```
+fn everyday(c: &mut Criterion) {
+    use faer::{col, mat};
+    let mut group = c.benchmark_group("everyday");
+    group.warm_up_time(Duration::from_millis(300));
+    group.measurement_time(Duration::from_secs(2));
+    let settings = Settings::<f64> {
+        threads: Some(1),
+        ..Settings::default()
+    };
+    let m = mat![[2.0, 1.0], [1.0, 2.0]];
+    let tiny = Plcp::new(m.as_ref(), col![1.0, 1.0].as_ref(), col![-1.0, -0.5].as_ref())
+        .and_then(|p| p.with_range(0.0, Some(1.5)))
+        .expect("a valid tiny problem");
+    let path = plcp::solve(&tiny, &settings).expect("valid settings");
+    assert_eq!(path.info.pivots, 1, "the tiny problem takes one pivot");
+    bench(&mut group, BenchmarkId::new("tiny", 2), || {
+        std::hint::black_box(plcp::solve(&tiny, &settings).expect("valid settings"));
+    });
+    for n in [20usize, 50, 100, 200] {
+        let inst = path_instance(n, 1);
+        bench(&mut group, BenchmarkId::new("path-1thread", n), || {
+            std::hint::black_box(plcp::solve(&inst.problem, &settings).expect("valid settings"));
+        });
+    }
+    let inst = path_instance(50, 1);
+    let m = inst.problem.m();
+    let mut g = vec![inst.problem.q().to_owned()];
+    for k in 0..100usize {
+        let last = g[k].clone();
+        let d = inst.problem.d();
+        g.push(faer::Col::from_fn(50, |i| last[i] + 0.1 * d[(i + k) % 50]));
+    }
+    bench(&mut group, BenchmarkId::new("sequence-100-steps", 50), || {
+        let mut solver = plcp::Solver::new(m, &settings).expect("a valid matrix");
+        std::hint::black_box(solver.lcp(g[0].as_ref()).expect("valid data"));
+        for k in 1..g.len() {
+            let d = &g[k] - &g[k - 1];
+            std::hint::black_box(solver.step(g[k - 1].as_ref(), d.as_ref()).expect("valid data"));
+        }
+    });
+    group.finish();
+}
+
+criterion_group!(benches, full_path, clarabel, everyday);
 criterion_main!(benches);

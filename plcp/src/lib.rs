@@ -72,6 +72,7 @@ pub mod residual;
 pub mod scalar;
 pub mod scaling;
 pub mod settings;
+mod solver;
 mod sparse_lu;
 pub mod tolerance;
 mod trace;
@@ -84,6 +85,7 @@ pub use lemke::{solve_lcp, LcpSolution};
 pub use path::{Breakpoint, FreeBlockInfo, Info, Path, Point, Ray, Residual, Segment, Status, Var};
 pub use problem::{Lcp, Plcp};
 pub use scalar::{Precision, Scalar};
+pub use solver::Solver;
 pub use settings::{BasisKind, Method, Settings, DEFAULT_REFACTOR_PERIOD};
 
 /// Traces the solution path of `problem` with the method chosen in `settings`.

@@ -3,7 +3,7 @@
 //! LU `inverse()` and `solve()` do too), the same operations written plainly.
 
 use crate::scalar::Scalar;
-use faer::linalg::solvers::{DenseSolveCore, Solve};
+use faer::linalg::solvers::Solve;
 use faer::{Col, Mat, MatRef};
 
 /// `A^{-1}` by LU with partial pivoting, with the largest and smallest pivot
@@ -14,8 +14,8 @@ pub fn inverse<T: Scalar>(a: MatRef<'_, T>) -> Option<(Mat<T>, f64, f64)> {
         return Some((Mat::zeros(0, 0), 1.0, 1.0));
     }
     if T::NATIVE {
-        let lu = a.partial_piv_lu();
-        let u = lu.U();
+        let lu = PivLu::new(a, par_for(n * n * n / 64));
+        let u = lu.u.as_ref();
         let (umax, umin) = (0..n).fold((0.0f64, f64::INFINITY), |(mx, mn), k| {
             let v = u[(k, k)].to_f64().abs();
             (mx.max(v), mn.min(v))
@@ -162,6 +162,70 @@ pub fn matvec<T: Scalar>(a: MatRef<'_, T>, x: faer::ColRef<'_, T>) -> Col<T> {
         }
     }
     y
+}
+
+/// faer's LU with partial pivoting and its inverse, as
+/// `Mat::partial_piv_lu().inverse()` computes them but with the parallelism
+/// given: faer's own reads the global one, and asking rayon for its number of
+/// threads starts the pool (threads spawned on the first call, milliseconds,
+/// more than a whole path at n = 100 takes).
+struct PivLu<T: Scalar> {
+    l: Mat<T>,
+    u: Mat<T>,
+    fwd: Vec<usize>,
+    bwd: Vec<usize>,
+    par: faer::Par,
+}
+
+impl<T: Scalar> PivLu<T> {
+    fn new(a: MatRef<'_, T>, par: faer::Par) -> Self {
+        use faer::dyn_stack::{MemBuffer, MemStack};
+        use faer::linalg::lu::partial_pivoting::factor;
+        let n = a.nrows();
+        let mut lu = a.to_owned();
+        let mut fwd = vec![0usize; n];
+        let mut bwd = vec![0usize; n];
+        factor::lu_in_place(
+            lu.as_mut(),
+            &mut fwd,
+            &mut bwd,
+            par,
+            MemStack::new(&mut MemBuffer::new(factor::lu_in_place_scratch::<usize, T>(
+                n,
+                n,
+                par,
+                Default::default(),
+            ))),
+            Default::default(),
+        );
+        // split as faer's PartialPivLu does: U the upper triangle, L unit lower
+        let u = Mat::from_fn(n, n, |i, j| if i <= j { lu[(i, j)] } else { T::zero() });
+        let l = Mat::from_fn(n, n, |i, j| match i.cmp(&j) {
+            core::cmp::Ordering::Greater => lu[(i, j)],
+            core::cmp::Ordering::Equal => T::one(),
+            core::cmp::Ordering::Less => T::zero(),
+        });
+        Self { l, u, fwd, bwd, par }
+    }
+
+    fn inverse(&self) -> Mat<T> {
+        use faer::dyn_stack::{MemBuffer, MemStack};
+        use faer::linalg::lu::partial_pivoting::inverse;
+        let n = self.l.nrows();
+        let mut out = Mat::zeros(n, n);
+        let perm = faer::perm::PermRef::new_checked(&self.fwd, &self.bwd, n);
+        inverse::inverse(
+            out.as_mut(),
+            self.l.as_ref(),
+            self.u.as_ref(),
+            perm,
+            self.par,
+            MemStack::new(&mut MemBuffer::new(inverse::inverse_scratch::<usize, T>(
+                n, self.par,
+            ))),
+        );
+        out
+    }
 }
 
 #[cfg(test)]

@@ -67,6 +67,18 @@ enum Command {
         /// Parameter values at which to report the solution, comma-separated.
         #[arg(long, value_delimiter = ',', value_parser = parse_at, allow_hyphen_values = true)]
         at: Vec<f64>,
+        /// Threads for the large products (default: by size; 1 keeps one thread).
+        #[arg(long, value_parser = parse_threads)]
+        threads: Option<usize>,
+    },
+    /// The MPC user's loop: one M, targets g_0..g_K; the LCP at g_0, then the
+    /// path from g_(k-1) to g_k (L = 0..1) for each k, started where the last ended.
+    Sequence {
+        /// The file: {"M": [[...], ...], "targets": [[g_0], ..., [g_K]]}.
+        file: PathBuf,
+        /// Threads for the large products (default: by size; 1 keeps one thread).
+        #[arg(long, value_parser = parse_threads)]
+        threads: Option<usize>,
     },
     /// Solve a plain LCP given in the Siconos .dat format (dense or sparse-block).
     Lcp {
@@ -101,6 +113,13 @@ fn parse_lambda_max(s: &str) -> Result<f64, String> {
     }
 }
 
+fn parse_threads(s: &str) -> Result<usize, String> {
+    match s.trim().parse::<usize>() {
+        Ok(k) if k >= 1 => Ok(k),
+        _ => Err(format!("'{s}' is not a number of threads (1 or more)")),
+    }
+}
+
 fn parse_at(s: &str) -> Result<f64, String> {
     match s.trim().parse::<f64>() {
         Ok(v) if v.is_finite() => Ok(v),
@@ -132,6 +151,7 @@ fn solve<T: Scalar>(
     at: &[f64],
     certify: bool,
     exact: bool,
+    threads: Option<usize>,
 ) -> Result<String, InputError> {
     let mut problem = read_plcp::<T>(file).map_err(in_file(file))?;
     if lambda_max.is_some() {
@@ -139,7 +159,10 @@ fn solve<T: Scalar>(
         let lambda0 = problem.lambda0();
         problem = problem.with_range(lambda0, lm)?;
     }
-    let settings = Settings::<T>::with_method(method);
+    let settings = Settings::<T> {
+        threads,
+        ..Settings::with_method(method)
+    };
     let start = Instant::now();
     if exact {
         let problem: plcp::Plcp<f64> = problem.cast();
@@ -197,25 +220,88 @@ fn run(command: Command) -> Result<String, InputError> {
             certify,
             lambda_max,
             at,
-        } => match precision {
-            SolvePrecision::Float(Precision::F32) => {
-                solve::<f32>(&file, method, lambda_max, &at, certify, false)
+            threads,
+        } => {
+            one_thread(threads);
+            match precision {
+                SolvePrecision::Float(Precision::F32) => {
+                    solve::<f32>(&file, method, lambda_max, &at, certify, false, threads)
+                }
+                SolvePrecision::Float(Precision::F64) => {
+                    solve::<f64>(&file, method, lambda_max, &at, certify, false, threads)
+                }
+                SolvePrecision::Float(Precision::F128) => {
+                    solve::<faer::fx128>(&file, method, lambda_max, &at, certify, false, threads)
+                }
+                // the data read as f64, each number then exact
+                SolvePrecision::Exact => {
+                    solve::<f64>(&file, method, lambda_max, &at, certify, true, threads)
+                }
             }
-            SolvePrecision::Float(Precision::F64) => {
-                solve::<f64>(&file, method, lambda_max, &at, certify, false)
-            }
-            SolvePrecision::Float(Precision::F128) => {
-                solve::<faer::fx128>(&file, method, lambda_max, &at, certify, false)
-            }
-            // the data read as f64, each number then exact
-            SolvePrecision::Exact => solve::<f64>(&file, method, lambda_max, &at, certify, true),
-        },
+        }
+        Command::Sequence { file, threads } => {
+            one_thread(threads);
+            sequence(&file, threads)
+        }
         Command::Lcp { file, precision } => match precision {
             Precision::F32 => lcp::<f32>(&file),
             Precision::F64 => lcp::<f64>(&file),
             Precision::F128 => lcp::<faer::fx128>(&file),
         },
     }
+}
+
+/// With one thread asked for, faer's own kernels (outside the solver's
+/// settings) stay on the calling thread too.
+fn one_thread(threads: Option<usize>) {
+    if threads == Some(1) {
+        faer::set_global_parallelism(faer::Par::Seq);
+    }
+}
+
+/// `plcp sequence`: reads `{"M": [[...]], "targets": [[...], ...]}`, runs the
+/// LCP at the first target and one path per later target with
+/// [`plcp::Solver`], prints `{"n", "timing": {"solve_seconds"}, "steps":
+/// [{"status", "pivots", "warm", "end": {"z"}}]}` (the time of all steps, no I/O).
+fn sequence(file: &std::path::Path, threads: Option<usize>) -> Result<String, InputError> {
+    let (m, targets) = plcp::io::json::read_sequence(file)?;
+    let settings = Settings::<f64> {
+        threads,
+        ..Settings::default()
+    };
+    let n = m.nrows();
+    let mut solver = plcp::Solver::new(m.as_ref(), &settings).map_err(in_file(file))?;
+    let start = Instant::now();
+    let mut paths = Vec::with_capacity(targets.len());
+    for (k, g) in targets.iter().enumerate() {
+        let path = if k == 0 {
+            solver.lcp(g.as_ref())
+        } else {
+            let d = g - &targets[k - 1];
+            solver.step(targets[k - 1].as_ref(), d.as_ref())
+        }
+        .map_err(in_file(file))?;
+        paths.push(path);
+    }
+    let seconds = start.elapsed().as_secs_f64();
+    let steps: Vec<serde_json::Value> = paths
+        .iter()
+        .map(|p| {
+            serde_json::json!({
+                "status": p.status.as_str(),
+                "pivots": p.info.pivots,
+                "warm": p.info.warm_start,
+                "residual": p.info.residual.worst(),
+                "end": {"z": (0..n).map(|i| p.end.z[i]).collect::<Vec<f64>>()},
+            })
+        })
+        .collect();
+    Ok(serde_json::json!({
+        "n": n,
+        "timing": {"solve_seconds": seconds},
+        "steps": steps,
+    })
+    .to_string())
 }
 
 /// Joins the first paragraph of a (possibly multi-line) message into one line.

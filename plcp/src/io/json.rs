@@ -220,6 +220,64 @@ pub fn parse_plcp<T: Scalar>(bytes: &[u8], file: &str) -> Result<Plcp<T>, PlcpEr
     Plcp::mixed(m.as_ref(), q.as_ref(), d.as_ref(), raw.free)?.with_range(lambda0, lambda_max)
 }
 
+/// The file of `plcp sequence`: one matrix and the targets `g_0 .. g_K`.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawSequence {
+    #[serde(rename = "M", alias = "m")]
+    m: Vec<Vec<Num>>,
+    targets: Vec<Vec<Num>>,
+    /// An annotation: any JSON value, read and ignored.
+    #[serde(default, rename = "comment")]
+    _comment: Option<serde::de::IgnoredAny>,
+}
+
+/// Reads the file of `plcp sequence`, `{"M": [[...]], "targets": [[...], ...]}`:
+/// a square `M` and at least one target of its order.
+pub fn read_sequence(path: &std::path::Path) -> Result<(Mat<f64>, Vec<Col<f64>>), PlcpError> {
+    let bytes = read_bytes(path)?;
+    let file = path.display().to_string();
+    let text = utf8_in(&bytes, &file)?;
+    let raw: RawSequence =
+        serde_json::from_str(text).map_err(|e| parse_error(text, &file, e))?;
+    let dim = raw.m.len();
+    if dim == 0 || raw.m.iter().any(|r| r.len() != dim) {
+        return Err(PlcpError::Dimension {
+            what: "M".into(),
+            expected: "a square matrix of order at least 1".into(),
+            found: format!("{dim} rows of lengths {:?}", raw.m.iter().map(Vec::len).collect::<Vec<_>>()),
+        });
+    }
+    if raw.targets.is_empty() {
+        return Err(PlcpError::Invalid {
+            what: "targets".into(),
+            why: "no target (at least g_0 is needed)".into(),
+        });
+    }
+    let mut m = Mat::<f64>::zeros(dim, dim);
+    for (i, row) in raw.m.iter().enumerate() {
+        for (j, v) in row.iter().enumerate() {
+            m[(i, j)] = convert("M", &format!("({i}, {j})"), v.0)?;
+        }
+    }
+    let mut targets = Vec::with_capacity(raw.targets.len());
+    for (k, g) in raw.targets.iter().enumerate() {
+        if g.len() != dim {
+            return Err(PlcpError::Dimension {
+                what: format!("targets[{k}]"),
+                expected: format!("{dim} entries (the order of M)"),
+                found: format!("{} entries", g.len()),
+            });
+        }
+        let mut c = Col::<f64>::zeros(dim);
+        for (i, x) in g.iter().enumerate() {
+            c[i] = convert("targets", &format!("[{k}][{i}]"), x.0)?;
+        }
+        targets.push(c);
+    }
+    Ok((m, targets))
+}
+
 /// Converts a requested end of the parameter range: `None` or `+inf` is
 /// infinity, NaN and `-inf` are errors, a finite value must fit `T`.
 pub fn lambda_max_from_f64<T: Scalar>(v: Option<f64>) -> Result<Option<T>, PlcpError> {

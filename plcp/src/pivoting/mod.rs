@@ -25,7 +25,7 @@ mod ratio;
 mod refine;
 mod trace;
 
-pub(crate) use phases::{run_path, start_phase};
+pub(crate) use phases::{finish_path, run_path, start_phase};
 
 use crate::basis::{apply, var_column, BasisFactor, BlockInverse, DenseInverse, SparseLu};
 use crate::matrix::MatrixRef;
@@ -278,6 +278,21 @@ impl<'a, T: Scalar> Engine<'a, T> {
         // off for every solve but the entering column's (see trace_steps)
         self.refine_inside = self.factor.set_refine(false);
         self.noise = self.pivot_tol * T::from_f64(cond.clamp(1.0, 1e6));
+        self.values_from_factor();
+        if cond * T::eps().to_f64() > self.settings.max_cond_eps {
+            return Err(format!(
+                "basis condition number estimate {cond:.3e} at L = {:e} exceeds {:.1e}/eps ({}): results would not be accurate in this precision; use a higher precision",
+                self.lambda.to_f64(),
+                self.settings.max_cond_eps,
+                T::NAME
+            ));
+        }
+        Ok(())
+    }
+
+    /// The basic values `x = B^{-1} (q + L d)` from the current factorisation,
+    /// tiny negatives of sign-constrained basics (drift) snapped to zero.
+    fn values_from_factor(&mut self) {
         let rhs = self.rhs();
         let xnew = self.factor.solve(&rhs);
         // snap tiny negatives of sign-constrained basics (drift) to zero
@@ -296,15 +311,29 @@ impl<'a, T: Scalar> Engine<'a, T> {
             // L stays the path's exact parameter; the recomputed value measures drift
             self.x[l] = self.lambda;
         }
-        if cond * T::eps().to_f64() > self.settings.max_cond_eps {
-            return Err(format!(
-                "basis condition number estimate {cond:.3e} at L = {:e} exceeds {:.1e}/eps ({}): results would not be accurate in this precision; use a higher precision",
-                self.lambda.to_f64(),
-                self.settings.max_cond_eps,
-                T::NAME
-            ));
+    }
+
+    /// A new right-hand side and direction on the same `M`, the basis and its
+    /// factorisation kept (no refactorisation): the basic values are solved
+    /// anew with `L` nonbasic at `lambda`, and the counters start again. For
+    /// the solver object ([`crate::solver::Solver`]): returns why the basis
+    /// is not a feasible start for the new data, `None` if it is one.
+    pub(crate) fn retarget(&mut self, q: Col<T>, d: Col<T>, lambda: T) -> Option<String> {
+        if self.row_of(Var::Lambda).is_some() {
+            return Some("L is basic".into());
         }
-        Ok(())
+        self.data_max = Self::data_max(&q, &d);
+        self.d_rows = Self::nonzero_rows(&d);
+        self.q = q;
+        self.d = d;
+        self.lambda = lambda;
+        self.pivots = 0;
+        self.degenerate_pivots = 0;
+        self.refactorisations = 0;
+        self.refinements = 0;
+        self.residual_owed = false;
+        self.values_from_factor();
+        self.infeasibility()
     }
 
     /// Why the current basic solution is not a feasible start (a basic `z` or `w`

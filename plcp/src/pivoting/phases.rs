@@ -326,7 +326,7 @@ pub(crate) fn run_path<T: Scalar>(
 
 /// Traces from the engine's basis (after the start phase, or a warm start) to
 /// `lambda_max` and assembles the path.
-fn finish_path<T: Scalar>(
+pub(crate) fn finish_path<T: Scalar>(
     eng: &mut Engine<'_, T>,
     mut rec: Recorder<T>,
     lambda0: T,
