@@ -199,9 +199,13 @@ fn everyday(c: &mut Criterion) {
         ..Settings::default()
     };
     let m = mat![[2.0, 1.0], [1.0, 2.0]];
-    let tiny = Plcp::new(m.as_ref(), col![1.0, 1.0].as_ref(), col![-1.0, -0.5].as_ref())
-        .and_then(|p| p.with_range(0.0, Some(1.5)))
-        .expect("a valid tiny problem");
+    let tiny = Plcp::new(
+        m.as_ref(),
+        col![1.0, 1.0].as_ref(),
+        col![-1.0, -0.5].as_ref(),
+    )
+    .and_then(|p| p.with_range(0.0, Some(1.5)))
+    .expect("a valid tiny problem");
     let path = plcp::solve(&tiny, &settings).expect("valid settings");
     assert_eq!(path.info.pivots, 1, "the tiny problem takes one pivot");
     bench(&mut group, BenchmarkId::new("tiny", 2), || {
@@ -221,14 +225,22 @@ fn everyday(c: &mut Criterion) {
         let d = inst.problem.d();
         g.push(faer::Col::from_fn(50, |i| last[i] + 0.1 * d[(i + k) % 50]));
     }
-    bench(&mut group, BenchmarkId::new("sequence-100-steps", 50), || {
-        let mut solver = plcp::Solver::new(m, &settings).expect("a valid matrix");
-        std::hint::black_box(solver.lcp(g[0].as_ref()).expect("valid data"));
-        for k in 1..g.len() {
-            let d = &g[k] - &g[k - 1];
-            std::hint::black_box(solver.step(g[k - 1].as_ref(), d.as_ref()).expect("valid data"));
-        }
-    });
+    bench(
+        &mut group,
+        BenchmarkId::new("sequence-100-steps", 50),
+        || {
+            let mut solver = plcp::Solver::new(m, &settings).expect("a valid matrix");
+            std::hint::black_box(solver.lcp(g[0].as_ref()).expect("valid data"));
+            for k in 1..g.len() {
+                let d = &g[k] - &g[k - 1];
+                std::hint::black_box(
+                    solver
+                        .step(g[k - 1].as_ref(), d.as_ref())
+                        .expect("valid data"),
+                );
+            }
+        },
+    );
     group.finish();
 }
 

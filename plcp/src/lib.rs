@@ -85,8 +85,8 @@ pub use lemke::{solve_lcp, LcpSolution};
 pub use path::{Breakpoint, FreeBlockInfo, Info, Path, Point, Ray, Residual, Segment, Status, Var};
 pub use problem::{Lcp, Plcp};
 pub use scalar::{Precision, Scalar};
-pub use solver::Solver;
 pub use settings::{BasisKind, Method, Settings, DEFAULT_REFACTOR_PERIOD};
+pub use solver::Solver;
 
 /// Traces the solution path of `problem` with the method chosen in `settings`.
 ///

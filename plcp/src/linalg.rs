@@ -190,12 +190,9 @@ impl<T: Scalar> PivLu<T> {
             &mut fwd,
             &mut bwd,
             par,
-            MemStack::new(&mut MemBuffer::new(factor::lu_in_place_scratch::<usize, T>(
-                n,
-                n,
-                par,
-                Default::default(),
-            ))),
+            MemStack::new(&mut MemBuffer::new(
+                factor::lu_in_place_scratch::<usize, T>(n, n, par, Default::default()),
+            )),
             Default::default(),
         );
         // split as faer's PartialPivLu does: U the upper triangle, L unit lower
@@ -205,7 +202,13 @@ impl<T: Scalar> PivLu<T> {
             core::cmp::Ordering::Equal => T::one(),
             core::cmp::Ordering::Less => T::zero(),
         });
-        Self { l, u, fwd, bwd, par }
+        Self {
+            l,
+            u,
+            fwd,
+            bwd,
+            par,
+        }
     }
 
     fn inverse(&self) -> Mat<T> {

@@ -131,13 +131,21 @@ impl<'a, T: Scalar> Solver<'a, T> {
         let was_warm = warm.is_some();
         if warm.is_none() {
             let start: Vec<Var> = (0..n).map(Var::W).collect();
-            let cold = Engine::new(self.m.into(), 0, q.clone(), d.clone(), start, T::zero(), self.settings)
-                .ok()
-                .and_then(|mut eng| {
-                    start_phase(&mut eng, &q, &d, T::zero(), self.settings.covering.as_ref())
-                        .ok()
-                        .map(|_| eng)
-                });
+            let cold = Engine::new(
+                self.m.into(),
+                0,
+                q.clone(),
+                d.clone(),
+                start,
+                T::zero(),
+                self.settings,
+            )
+            .ok()
+            .and_then(|mut eng| {
+                start_phase(&mut eng, &q, &d, T::zero(), self.settings.covering.as_ref())
+                    .ok()
+                    .map(|_| eng)
+            });
             match cold {
                 Some(eng) => {
                     info.start_pivots = eng.pivots;
@@ -180,7 +188,9 @@ impl<'a, T: Scalar> Solver<'a, T> {
         // L nonbasic: the driver takes L's place (one pivot, no refactorisation)
         if path.status == Status::Reached {
             if let Some(driver) = eng.row_of(Var::Lambda).map(|l| {
-                path.final_basis.as_ref().expect("a reached path has its end basis")[l]
+                path.final_basis
+                    .as_ref()
+                    .expect("a reached path has its end basis")[l]
             }) {
                 let theta = value_of(&path.end, driver);
                 if eng.settle(driver, theta).is_ok() {

@@ -42,14 +42,22 @@ fn check(n: usize, k: usize, step: f64, seed: u64) {
     let mut solver = Solver::new(m.as_ref(), &settings).unwrap();
     let first = solver.lcp(g[0].as_ref()).unwrap();
     assert_eq!(first.status, Status::Reached);
-    let cold = plcp::solve_lcp(&plcp::Lcp::new(m.as_ref(), g[0].as_ref()).unwrap(), &settings).unwrap();
+    let cold = plcp::solve_lcp(
+        &plcp::Lcp::new(m.as_ref(), g[0].as_ref()).unwrap(),
+        &settings,
+    )
+    .unwrap();
     assert!(max_diff(&first.end.z, &cold.z) < 1e-10, "step 0");
     let mut warm_steps = 0;
     for s in 1..=k {
         let d = &g[s] - &g[s - 1];
         let path = solver.step(g[s - 1].as_ref(), d.as_ref()).unwrap();
         assert_eq!(path.status, Status::Reached, "step {s}: {}", path.message);
-        assert!(path.info.residual.worst() < 1e-12, "step {s}: {:?}", path.info.residual);
+        assert!(
+            path.info.residual.worst() < 1e-12,
+            "step {s}: {:?}",
+            path.info.residual
+        );
         warm_steps += usize::from(path.info.warm_start && path.info.start_pivots == 0);
         let problem = Plcp::new(m.as_ref(), g[s - 1].as_ref(), d.as_ref())
             .unwrap()
@@ -60,10 +68,20 @@ fn check(n: usize, k: usize, step: f64, seed: u64) {
         let diff = max_diff(&path.end.z, &cold.end.z);
         assert!(diff < 1e-10, "n = {n}, step {s}: end z differ by {diff:e}");
         // the end of step s is the LCP at g_s
-        let at = plcp::solve_lcp(&plcp::Lcp::new(m.as_ref(), g[s].as_ref()).unwrap(), &settings).unwrap();
-        assert!(max_diff(&path.end.z, &at.z) < 1e-10, "step {s} against the LCP at g_s");
+        let at = plcp::solve_lcp(
+            &plcp::Lcp::new(m.as_ref(), g[s].as_ref()).unwrap(),
+            &settings,
+        )
+        .unwrap();
+        assert!(
+            max_diff(&path.end.z, &at.z) < 1e-10,
+            "step {s} against the LCP at g_s"
+        );
     }
-    assert_eq!(warm_steps, k, "every step after the first starts where the last ended");
+    assert_eq!(
+        warm_steps, k,
+        "every step after the first starts where the last ended"
+    );
 }
 
 #[test]

@@ -238,14 +238,16 @@ pub fn read_sequence(path: &std::path::Path) -> Result<(Mat<f64>, Vec<Col<f64>>)
     let bytes = read_bytes(path)?;
     let file = path.display().to_string();
     let text = utf8_in(&bytes, &file)?;
-    let raw: RawSequence =
-        serde_json::from_str(text).map_err(|e| parse_error(text, &file, e))?;
+    let raw: RawSequence = serde_json::from_str(text).map_err(|e| parse_error(text, &file, e))?;
     let dim = raw.m.len();
     if dim == 0 || raw.m.iter().any(|r| r.len() != dim) {
         return Err(PlcpError::Dimension {
             what: "M".into(),
             expected: "a square matrix of order at least 1".into(),
-            found: format!("{dim} rows of lengths {:?}", raw.m.iter().map(Vec::len).collect::<Vec<_>>()),
+            found: format!(
+                "{dim} rows of lengths {:?}",
+                raw.m.iter().map(Vec::len).collect::<Vec<_>>()
+            ),
         });
     }
     if raw.targets.is_empty() {
