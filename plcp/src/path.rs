@@ -304,8 +304,8 @@ pub struct Info {
     /// from which `L`, why, and the pivots and time in each precision. The counts
     /// above then add both runs.
     pub escalation: Option<crate::escalate::Escalation>,
-    /// The exact certificate of the path, when [`crate::Settings::certify`]
-    /// asked for one.
+    /// The exact certificate of the path, when it came from
+    /// [`crate::solve_certified`].
     pub certificate: Option<crate::exact::Certificate>,
 }
 

@@ -95,12 +95,12 @@ pub struct Settings<T: Scalar> {
     /// segment's basis, and the rest is spliced into the path rounded to the
     /// working precision; the status is then the `fx128` run's, and
     /// [`crate::Info::escalation`] says where, why, and the pivots and time in
-    /// each precision. See [`crate::escalate`]. No effect in `fx128`.
+    /// each precision. See [`crate::Escalation`]. No effect in `fx128`.
     /// Default `false`.
     pub escalate: bool,
 }
 
-/// The representation of the basis inverse (see [`crate::basis`]).
+/// The representation of the basis inverse (`src/basis.rs`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
 pub enum BasisKind {
     /// Only the inverse of the block of matrix columns on uncovered rows:
