@@ -36,6 +36,26 @@ impl core::str::FromStr for Method {
 
 /// Settings. Every tolerance is relative; see [`crate::tolerance`] for how each
 /// is scaled.
+///
+/// Start from [`Settings::default`] and change what you need:
+///
+/// ```
+/// use faer::{col, mat};
+/// use plcp::{BasisKind, Method, Plcp, Settings, Status};
+/// let m = mat![[2.0, 1.0], [1.0, 2.0]];
+/// let problem =
+///     Plcp::new(m.as_ref(), col![1.0, 1.0].as_ref(), col![-1.0, -0.5].as_ref()).unwrap();
+/// let settings = Settings {
+///     method: Method::Wolfe,
+///     basis: BasisKind::Dense,
+///     max_pivots: Some(100),
+///     ..Settings::default()
+/// };
+/// let path = plcp::solve(&problem, &settings).unwrap();
+/// assert_eq!(path.status, Status::UnboundedRay);
+/// assert_eq!(path.info.method, "wolfe");
+/// assert_eq!(path.breakpoints[0].lambda, 1.0);
+/// ```
 #[derive(Clone, Debug)]
 pub struct Settings<T: Scalar> {
     /// The algorithm. Default: [`Method::Lemke`].
