@@ -3,7 +3,7 @@
 //! `examples/common/fuzz_core.rs` for what each input is).
 //!
 //! ```text
-//! cargo run --release --example fuzz -- N [--seed S] [--threads T] [--only I]
+//! cargo run --release --example fuzz -- N [--seed S] [--threads T] [--only I] [--quiet]
 //! ```
 //!
 //! Runs inputs `0..N` (or only input `I`), every call under `catch_unwind`.
@@ -25,6 +25,7 @@ fn main() {
     let mut seed: u64 = 20261121;
     let mut threads: u64 = 1;
     let mut only: Option<u64> = None;
+    let mut quiet = false;
     let mut i = 0;
     while i < args.len() {
         let next = |i: usize| -> u64 {
@@ -45,6 +46,7 @@ fn main() {
                 threads = next(i).max(1);
                 i += 1;
             }
+            "--quiet" | "-q" => quiet = true,
             "--only" => {
                 only = Some(next(i));
                 i += 1;
@@ -55,7 +57,7 @@ fn main() {
                     .parse::<f64>()
                     .map(|v| v as u64)
                     .unwrap_or_else(|_| {
-                        eprintln!("usage: fuzz N [--seed S] [--threads T] [--only I]");
+                        eprintln!("usage: fuzz N [--seed S] [--threads T] [--only I] [--quiet]");
                         std::process::exit(2)
                     })
             }
@@ -91,34 +93,46 @@ fn main() {
             .collect(),
     );
     let done = Arc::new(AtomicU64::new(0));
+    // a bar on a terminal (not with --quiet), fed by the watchdog from the slots
+    let bar = Arc::new(plcp::progress::Progress::bar(n, "inputs", quiet));
+    let chunk = n.div_ceil(threads);
     {
-        let (slots, done) = (slots.clone(), done.clone());
+        let (slots, done, bar) = (slots.clone(), done.clone(), bar.clone());
         std::thread::spawn(move || {
             let mut last = vec![u64::MAX; slots.len()];
             let mut since = vec![Instant::now(); slots.len()];
             let mut warned = vec![u64::MAX; slots.len()];
+            let mut finished = vec![false; slots.len()];
             while done.load(Ordering::Relaxed) == 0 {
                 std::thread::sleep(Duration::from_millis(500));
+                let mut pos = 0;
                 for (k, (idx, _)) in slots.iter().enumerate() {
                     let cur = idx.load(Ordering::Relaxed);
+                    let lo = (k as u64 * chunk).min(n);
                     if cur == u64::MAX {
+                        // not started, or done with its range
+                        finished[k] |= last[k] != u64::MAX;
+                        if finished[k] {
+                            pos += ((k as u64 + 1) * chunk).min(n) - lo;
+                        }
                         continue;
                     }
+                    pos += cur.saturating_sub(lo);
                     if cur != last[k] {
                         last[k] = cur;
                         since[k] = Instant::now();
                     } else if since[k].elapsed() > Duration::from_secs(10) && warned[k] != cur {
                         warned[k] = cur;
-                        eprintln!("WATCHDOG: input #{cur} has run for over 10 s (possible hang; reproduce with --only {cur})");
+                        bar.println(&format!("WATCHDOG: input #{cur} has run for over 10 s (possible hang; reproduce with --only {cur})"));
                     }
                 }
+                bar.set_position(pos);
             }
         });
     }
-    let chunk = n.div_ceil(threads);
     let handles: Vec<_> = (0..threads)
         .map(|k| {
-            let (scenes, slots) = (scenes.clone(), slots.clone());
+            let (scenes, slots, bar) = (scenes.clone(), slots.clone(), bar.clone());
             std::thread::spawn(move || {
                 let lo = (k * chunk).min(n);
                 let hi = ((k + 1) * chunk).min(n);
@@ -130,12 +144,12 @@ fn main() {
                     Some(&slots[k as usize].0),
                     |s| {
                         if k == 0 {
-                            eprintln!(
+                            bar.println(&format!(
                                 "  thread 0: {} inputs, {:.0} inputs/s, {} panics",
                                 s.inputs,
                                 s.inputs as f64 / s.seconds.max(1e-9),
                                 s.panics
-                            );
+                            ));
                         }
                     },
                 );
@@ -149,6 +163,7 @@ fn main() {
         sum.merge(h.join().expect("fuzz threads catch every panic"));
     }
     done.store(1, Ordering::Relaxed);
+    bar.finish();
     sum.seconds = t0.elapsed().as_secs_f64();
     println!("{}", sum.table());
     println!(

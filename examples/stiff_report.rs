@@ -15,6 +15,7 @@ mod stiff_core;
 
 fn main() {
     let fast = std::env::args().any(|a| a == "--fast");
+    let quiet = std::env::args().any(|a| a == "--quiet" || a == "-q");
     let mut cases = stiff_core::cases();
     match stiff_core::siconos_cases() {
         Ok(c) => cases.extend(c),
@@ -26,17 +27,26 @@ fn main() {
     print!("{}", stiff_core::header());
     let mut wrong = 0;
     let mut rows = 0;
-    for case in cases.iter().filter(|c| !fast || c.fast) {
+    let todo: Vec<_> = cases.iter().filter(|c| !fast || c.fast).collect();
+    let bar = plcp::progress::Progress::bar(todo.len() as u64, "cases", quiet);
+    for case in todo {
+        bar.message(&case.name);
         let t = std::time::Instant::now();
         for r in stiff_core::run_case(case) {
-            print!("{}", stiff_core::line(&r));
+            bar.suspend(|| print!("{}", stiff_core::line(&r)));
             rows += 1;
             wrong += r.wrong as usize;
         }
         if t.elapsed().as_secs_f64() > 5.0 {
-            eprintln!("  ({}: {:.1} s)", case.name, t.elapsed().as_secs_f64());
+            bar.println(&format!(
+                "  ({}: {:.1} s)",
+                case.name,
+                t.elapsed().as_secs_f64()
+            ));
         }
+        bar.inc(1);
     }
+    bar.finish();
     println!(
         "\n{rows} runs, {wrong} WRONG (success reported beyond the allowance: f32 {:e}, f64 {:e}, f128 {:e})",
         stiff_core::allowance("f32"),

@@ -135,3 +135,9 @@ pub mod random {
         inst
     }
 }
+
+/// The README's Rust examples, run as doc tests so that the user's guide
+/// stays true (`cargo test --workspace --release` runs them).
+#[cfg(doctest)]
+#[doc = include_str!("../README.md")]
+pub struct ReadmeExamples;

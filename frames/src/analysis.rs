@@ -46,6 +46,20 @@ impl Default for AnalysisOptions {
 }
 
 /// The complete analysis of a scene.
+///
+/// ```
+/// let file = concat!(env!("CARGO_MANIFEST_DIR"), "/../scenes/cantilever.toml");
+/// let scene = frames::Scene::from_file(file).unwrap();
+/// let a = frames::Analysis::run(scene, &frames::AnalysisOptions::default()).unwrap();
+/// // the path of system (9), read as hinge events: the static collapse load first
+/// assert!(a.solution.status.is_success());
+/// let first = &a.reading.hinges[0];
+/// assert_eq!(a.scene.frame.nodes[first.node].id, "A");
+/// assert!((first.lambda - 1.0).abs() < 1e-12);
+/// // the reports: text (what `frames run` prints) and JSON (`--json`)
+/// assert!(a.to_text().contains("critical Lambda"));
+/// assert_eq!(a.to_json()["hinges"].as_array().map(|h| h.len()), Some(4));
+/// ```
 #[derive(Clone, Debug)]
 pub struct Analysis {
     /// The scene.

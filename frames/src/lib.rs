@@ -57,7 +57,7 @@
 //! }
 //! assert!(a.reading.deactivations().is_empty());
 //! ```
-#![warn(missing_docs)]
+#![deny(missing_docs)]
 
 pub mod analysis;
 pub mod assemble;

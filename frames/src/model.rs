@@ -339,6 +339,43 @@ impl Default for History {
 }
 
 /// A scene: the frame and the load history, with where each item sits in the file.
+///
+/// Read from a TOML file ([`Scene::from_file`]) or text ([`Scene::from_toml`]);
+/// the format is described in the README and the module documentation.
+///
+/// ```
+/// // a cantilever of length 1 as one element, a tip mass, a tip load
+/// let scene = frames::Scene::from_toml(r#"
+///     title = "one-element cantilever"
+///     [[node]]
+///     id = "A"
+///     x = 0.0
+///     y = 0.0
+///     [[node]]
+///     id = "B"
+///     x = 1.0
+///     y = 0.0
+///     [[member]]
+///     id = "AB"
+///     from = "A"
+///     to = "B"
+///     plastic_moment = 1.0
+///     [[support]]
+///     node = "A"
+///     fix = ["x", "y", "rz"]
+///     [[mass]]
+///     node = "B"
+///     m = 1.0
+///     [[load]]
+///     node = "B"
+///     fy = -1.0
+/// "#, "inline.toml").unwrap();
+/// assert_eq!(scene.frame.nodes.len(), 2);
+/// assert_eq!(scene.frame.node_index("B"), Some(1));
+/// // a mistake names the file, line, column and key
+/// let err = frames::Scene::from_toml("[[node]]\nid = \"A\"\nx = 0.0\nz = 1\n", "bad.toml");
+/// assert!(err.unwrap_err().to_string().starts_with("bad.toml:"));
+/// ```
 #[derive(Clone, Debug)]
 pub struct Scene {
     /// The file name as given (used in error messages).

@@ -1,4 +1,18 @@
 //! Reports of an analysis: a readable text and the JSON document.
+//!
+//! ```
+//! let file = concat!(env!("CARGO_MANIFEST_DIR"), "/../scenes/portal-sway.toml");
+//! let a = frames::Analysis::run(
+//!     frames::Scene::from_file(file).unwrap(),
+//!     &frames::AnalysisOptions::default(),
+//! )
+//! .unwrap();
+//! let text = a.to_text(); // what `frames run SCENE` prints
+//! assert!(text.starts_with(&a.scene.frame.title));
+//! let json = a.to_json(); // what `frames run SCENE --json` prints
+//! assert_eq!(json["status"], "unbounded_ray");
+//! assert_eq!(frames::report::format_number(0.5), "0.5");
+//! ```
 
 use crate::analysis::Analysis;
 use crate::assemble::MemberForce;

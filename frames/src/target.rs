@@ -43,7 +43,7 @@
 //! monotone stretch and is found), and no later root is reported before an
 //! earlier one. **Tolerance:** every bisection runs until its two ends are
 //! adjacent doubles (at most 64 halvings of the piece as floats; see
-//! [`bisect`]), and returns the end where `f >= 0`. The reported time is
+//! `bisect`), and returns the end where `f >= 0`. The reported time is
 //! therefore the first double at which the evaluated `f` is nonnegative; its
 //! error is the rounding error of evaluating `f` (a few ulp of the
 //! displacement scale `g`) divided by the speed `|u'(t*)|`, and

@@ -51,32 +51,38 @@
 //! let at = path.at(3.0).unwrap();
 //! assert!(at.w.iter().zip(at.z.iter()).all(|(w, z)| *w >= -1e-12 && *z >= -1e-12));
 //! ```
-#![warn(missing_docs)]
+#![deny(missing_docs)]
 // Index loops read like the formulas they implement in the numeric kernels.
 #![allow(clippy::needless_range_loop)]
 
-pub mod basis;
-pub mod error;
-pub mod escalate;
-pub mod evidence;
+// The public surface: the types and functions re-exported below, and the
+// modules a user opens by name (exact arithmetic, file formats, sparse
+// matrices, residuals, scaling, the tolerances every status depends on).
+// Everything else is the engine's inside.
+mod basis;
+mod error;
+mod escalate;
+mod evidence;
 pub mod exact;
 pub mod io;
-pub mod lemke;
-pub mod linalg;
+mod lemke;
+mod linalg;
 pub mod matrix;
-pub mod path;
+mod path;
 mod pivoting;
-pub mod problem;
-pub mod reduce;
+mod problem;
+#[cfg(feature = "cli")]
+pub mod progress;
+mod reduce;
 pub mod residual;
-pub mod scalar;
+mod scalar;
 pub mod scaling;
-pub mod settings;
+mod settings;
 mod solver;
 mod sparse_lu;
 pub mod tolerance;
 mod trace;
-pub mod wolfe;
+mod wolfe;
 
 pub use error::PlcpError;
 pub use escalate::Escalation;
@@ -84,7 +90,7 @@ pub use exact::{certify, Certificate};
 pub use lemke::{solve_lcp, LcpSolution};
 pub use path::{Breakpoint, FreeBlockInfo, Info, Path, Point, Ray, Residual, Segment, Status, Var};
 pub use problem::{Lcp, Plcp};
-pub use scalar::{Precision, Scalar};
+pub use scalar::{infinity, Precision, Scalar};
 pub use settings::{BasisKind, Method, Settings, DEFAULT_REFACTOR_PERIOD};
 pub use solver::Solver;
 
@@ -92,7 +98,8 @@ pub use solver::Solver;
 ///
 /// With [`Settings::escalate`], a path that ends `IllConditioned` in `f32` or
 /// `f64`, or claims its end on a basis too ill-conditioned to be sure of it
-/// ([`tolerance::ESCALATE_COND_EPS`]), is continued in `fx128` ([`escalate`]).
+/// ([`tolerance::ESCALATE_COND_EPS`]), is continued in `fx128` (the
+/// splice is described by [`Escalation`]).
 ///
 /// Returns `Err` only for invalid settings, or for [`Method::Lemke`] on a mixed
 /// problem whose free block is singular (use [`Method::Wolfe`] there). Every

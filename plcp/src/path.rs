@@ -42,6 +42,22 @@ impl core::fmt::Display for Var {
 }
 
 /// How the path ended. An outcome, not an error: read it before using the path.
+///
+/// ```
+/// use faer::{col, mat};
+/// use plcp::{Plcp, Settings, Status};
+/// let m = mat![[2.0, 1.0], [1.0, 2.0]];
+/// let problem = Plcp::new(m.as_ref(), col![1.0, 1.0].as_ref(), col![-1.0, -0.5].as_ref())
+///     .unwrap()
+///     .with_range(0.0, Some(0.5))
+///     .unwrap();
+/// let path = plcp::solve(&problem, &Settings::default()).unwrap();
+/// // lambda_max = 0.5 is reached before the first breakpoint (L = 1)
+/// assert_eq!(path.status, Status::Reached);
+/// assert!(path.status.is_success());
+/// assert_eq!(path.status.as_str(), "reached");
+/// assert_eq!(path.lambda_reached, 0.5);
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Status {
     /// The path reached `lambda_max` (or, for a plain LCP, the LCP was solved).
@@ -112,6 +128,22 @@ pub struct Breakpoint<T: Scalar> {
 ///
 /// Values are stored as the value at `lambda_from` plus a slope, which keeps
 /// them accurate far from `L = 0`; [`Segment::z0`] etc. give the base at `L = 0`.
+///
+/// ```
+/// use faer::{col, mat};
+/// use plcp::{Plcp, Settings, Var};
+/// let m = mat![[2.0, 1.0], [1.0, 2.0]];
+/// let problem =
+///     Plcp::new(m.as_ref(), col![1.0, 1.0].as_ref(), col![-1.0, -0.5].as_ref()).unwrap();
+/// let path = plcp::solve(&problem, &Settings::default()).unwrap();
+/// // after L = 1, z0 is basic: z0 = (L - 1) / 2 and w1 = 1/2 for every larger L
+/// let seg = &path.segments[1];
+/// assert_eq!(seg.basis, vec![Var::Z(0), Var::W(1)]);
+/// assert!(seg.unbounded && seg.contains(10.0));
+/// assert_eq!(seg.dz[0], 0.5);
+/// assert_eq!(seg.eval(3.0).z[0], 1.0);
+/// assert_eq!(seg.w0()[1], 0.5);
+/// ```
 #[derive(Clone, Debug)]
 pub struct Segment<T: Scalar> {
     /// Parameter at the start of the segment.
@@ -265,6 +297,19 @@ pub struct FreeBlockInfo {
 }
 
 /// How the path was computed and how well it is known.
+///
+/// ```
+/// use faer::{col, mat};
+/// let m = mat![[2.0, 1.0], [1.0, 2.0]];
+/// let problem =
+///     plcp::Plcp::new(m.as_ref(), col![1.0, 1.0].as_ref(), col![-1.0, -0.5].as_ref()).unwrap();
+/// let path = plcp::solve(&problem, &plcp::Settings::default()).unwrap();
+/// let info = &path.info;
+/// assert_eq!((info.method, info.precision), ("lemke", "f64"));
+/// assert_eq!(info.pivots, 1); // z0 replaces w0 at L = 1
+/// assert!(info.residual.worst() < 1e-14);
+/// assert!(info.escalation.is_none() && info.certificate.is_none());
+/// ```
 #[derive(Clone, Debug, Default)]
 pub struct Info {
     /// Which method ran.
@@ -304,8 +349,8 @@ pub struct Info {
     /// from which `L`, why, and the pivots and time in each precision. The counts
     /// above then add both runs.
     pub escalation: Option<crate::escalate::Escalation>,
-    /// The exact certificate of the path, when [`crate::Settings::certify`]
-    /// asked for one.
+    /// The exact certificate of the path, when it came from
+    /// [`crate::solve_certified`].
     pub certificate: Option<crate::exact::Certificate>,
 }
 
@@ -325,6 +370,28 @@ pub struct Ray<T: Scalar> {
 }
 
 /// The solution path of a PLCP.
+///
+/// A path is read through its [`Status`] first, then its breakpoints (where the
+/// basis changes), its segments (where every variable is affine in `L`), or
+/// evaluated at any `L` it covers.
+///
+/// ```
+/// use faer::{col, mat};
+/// use plcp::{Plcp, Settings, Status, Var};
+/// // w = q + L d + M z; w0 = 1 - L reaches zero at L = 1, then z0 grows
+/// let m = mat![[2.0, 1.0], [1.0, 2.0]];
+/// let problem =
+///     Plcp::new(m.as_ref(), col![1.0, 1.0].as_ref(), col![-1.0, -0.5].as_ref()).unwrap();
+/// let path = plcp::solve(&problem, &Settings::default()).unwrap();
+/// assert_eq!(path.status, Status::UnboundedRay);
+/// assert_eq!(path.breakpoints.len(), 1);
+/// let b = &path.breakpoints[0];
+/// assert_eq!((b.lambda, b.entering, b.leaving), (1.0, Var::Z(0), Var::W(0)));
+/// assert_eq!(path.segments.len(), 2);
+/// assert_eq!(path.segment_at(0.5), Some(0));
+/// let at = path.at(5.0).unwrap();
+/// assert!((at.z[0] - 2.0_f64).abs() < 1e-12 && (at.w[1] - 0.5_f64).abs() < 1e-12);
+/// ```
 #[derive(Clone, Debug)]
 pub struct Path<T: Scalar> {
     /// How the path ended.

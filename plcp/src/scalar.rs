@@ -54,7 +54,7 @@ pub trait Scalar: RealField + Copy + Send + Sync + core::ops::Neg<Output = Self>
 
     /// True if [`Scalar::wide_mul_add_fma`] differs from
     /// [`Scalar::wide_mul_add`] (`f64`): worth a kernel compiled with the
-    /// `fma` target feature where the CPU has it ([`fma_detected`]).
+    /// `fma` target feature where the CPU has it (`fma_detected`).
     const FMA_KERNEL: bool = false;
 
     /// [`Scalar::wide_mul_add`] with the error-free product taken by a fused

@@ -36,6 +36,26 @@ impl core::str::FromStr for Method {
 
 /// Settings. Every tolerance is relative; see [`crate::tolerance`] for how each
 /// is scaled.
+///
+/// Start from [`Settings::default`] and change what you need:
+///
+/// ```
+/// use faer::{col, mat};
+/// use plcp::{BasisKind, Method, Plcp, Settings, Status};
+/// let m = mat![[2.0, 1.0], [1.0, 2.0]];
+/// let problem =
+///     Plcp::new(m.as_ref(), col![1.0, 1.0].as_ref(), col![-1.0, -0.5].as_ref()).unwrap();
+/// let settings = Settings {
+///     method: Method::Wolfe,
+///     basis: BasisKind::Dense,
+///     max_pivots: Some(100),
+///     ..Settings::default()
+/// };
+/// let path = plcp::solve(&problem, &settings).unwrap();
+/// assert_eq!(path.status, Status::UnboundedRay);
+/// assert_eq!(path.info.method, "wolfe");
+/// assert_eq!(path.breakpoints[0].lambda, 1.0);
+/// ```
 #[derive(Clone, Debug)]
 pub struct Settings<T: Scalar> {
     /// The algorithm. Default: [`Method::Lemke`].
@@ -95,7 +115,7 @@ pub struct Settings<T: Scalar> {
     /// segment's basis, and the rest is spliced into the path rounded to the
     /// working precision; the status is then the `fx128` run's, and
     /// [`crate::Info::escalation`] says where, why, and the pivots and time in
-    /// each precision. See [`crate::escalate`]. No effect in `fx128`.
+    /// each precision. See [`crate::Escalation`]. No effect in `fx128`.
     /// Default `false`.
     pub escalate: bool,
     /// Threads for the large products of the block basis (its refactorisation
@@ -107,7 +127,7 @@ pub struct Settings<T: Scalar> {
     pub threads: Option<usize>,
 }
 
-/// The representation of the basis inverse (see [`crate::basis`]).
+/// The representation of the basis inverse (`src/basis.rs`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
 pub enum BasisKind {
     /// Only the inverse of the block of matrix columns on uncovered rows:

@@ -22,8 +22,8 @@
 //! | residual guard | a path that claims success is downgraded to `ill_conditioned`; the trace stops as `ill_conditioned` at a breakpoint whose residual (after refinement) fails it | largest reported residual `> sqrt(eps)` |
 //! | reduction ties | Lemke on the Schur reduction of a mixed problem: the tie tolerance of the reduced path | `tie_tol_eps` times [`reduction_tie_factor`] (`cond(F)`, at least 1, and the product at most `sqrt(eps)`) |
 //! | covering vector | the start phase's covering vector `c` is brought by a power of two to the scale of the right-hand side, so the artificial variable is dimensionless | `c * 2^(e(max abs(q + L0 d)) - e(max c))`, `e` the binary exponent |
-//! | infeasibility certificate | the start phase's ray proves `infeasible` ([`crate::evidence`]) | `v >= -CERT_EPS eps n max v`; `(M'v)_j <= CERT_EPS eps n sum_i abs(M_ij v_i)`; `(q + L0 d)'v < -CERT_EPS eps n sum_i abs((q + L0 d)_i v_i)` ([`crate::evidence::CERT_EPS`] `= 1e3`) |
-//! | P-matrix check | a ray with `M`'s symmetric part positive definite is `ill_conditioned` | Cholesky of `(M + M')/2 - CERT_EPS n eps_64 max abs(M_ij) I` succeeds (orders up to [`crate::evidence::PD_CHECK_MAX_ORDER`]) |
+//! | infeasibility certificate | the start phase's ray proves `infeasible` (`src/evidence.rs`) | `v >= -CERT_EPS eps n max v`; `(M'v)_j <= CERT_EPS eps n sum_i abs(M_ij v_i)`; `(q + L0 d)'v < -CERT_EPS eps n sum_i abs((q + L0 d)_i v_i)` (`CERT_EPS = 1e3` in `src/evidence.rs`) |
+//! | P-matrix check | a ray with `M`'s symmetric part positive definite is `ill_conditioned` | Cholesky of `(M + M')/2 - CERT_EPS n eps_64 max abs(M_ij) I` succeeds (orders up to `PD_CHECK_MAX_ORDER` = 4000 in `src/evidence.rs`) |
 //! | underflow | a datum is rejected ([`crate::PlcpError::Underflow`]) | nonzero and below [`crate::Scalar::min_normal`] in the working type |
 //! | doubtful success | with `Settings::escalate`, a path that ends `reached`, `unbounded_ray` or `secondary_ray` in `f32`/`f64` on a basis whose condition estimate times `eps` exceeded [`ESCALATE_COND_EPS`] (`1e-5`: fewer than about five digits left) is continued in `fx128` like an `ill_conditioned` one |
 //! | restart check | an `fx128` warm restart inside segment `k` must be feasible back to the segment's start `L_k` (else events lie between: the basis is not the path's there) | a `z` or `w` negative at `L_k` must reach zero within `sqrt(eps) * max(1, abs(L_k), segment)` of `L_k` (`eps` of the working precision: what its breakpoint can be off by) |
@@ -33,7 +33,7 @@ use crate::scalar::Scalar;
 
 /// With [`crate::Settings::escalate`], a path in `f32`/`f64` that claims an
 /// end (`reached`, a ray) on a basis with `cond * eps` above this is checked
-/// in `fx128` ([`crate::escalate`]): its breakpoints carry relative errors of
+/// in `fx128` ([`crate::Escalation`]): its breakpoints carry relative errors of
 /// about `cond * eps`, and a column entry below that level is lost to
 /// cancellation, which turns a blocking row into a false ray (the stiffest
 /// frame of issue 14: `cond = 2.8e13` in f64, the event at `L = 1.02e16`

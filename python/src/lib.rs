@@ -3,7 +3,7 @@
 //! The native half of the `plcp` Python package (`plcp._plcp`): it copies the
 //! caller's numpy data into a [`plcp::Plcp`] in the requested precision, traces
 //! the path with the Python thread state detached (other Python threads run
-//! meanwhile), and hands back a [`PyPath`] that evaluates the path in its
+//! meanwhile), and hands back a `PyPath` that evaluates the path in its
 //! working precision and shows every number as a float64 numpy array. The
 //! argument handling that is easier in Python (scipy.sparse to triplets,
 //! `ndim` checks, keyword defaults) lives in `plcp/__init__.py`; the contract

@@ -20,6 +20,9 @@ use std::process::ExitCode;
 struct Cli {
     #[command(subcommand)]
     command: Command,
+    /// No progress display on stderr (it is shown only on a terminal anyway).
+    #[arg(long, short, global = true)]
+    quiet: bool,
 }
 
 #[derive(Subcommand)]
@@ -95,6 +98,7 @@ fn out(text: &str) {
 }
 
 fn run(cli: Cli) -> Result<(), FramesError> {
+    let progress = plcp::progress::Progress::spinner("reading the scene", cli.quiet);
     match cli.command {
         Command::Run {
             scene,
@@ -124,7 +128,9 @@ fn run(cli: Cli) -> Result<(), FramesError> {
                 exact: matches!(precision, Some(FramePrecision::Exact)),
                 ..AnalysisOptions::default()
             };
+            progress.message("tracing the path of system (9)");
             let mut analysis = Analysis::run(scene, &options)?;
+            progress.finish();
             let valid = frames::timestep::plcp_valid_until(&analysis);
             if let Some((lambda, t)) = valid {
                 let _ = writeln!(
@@ -139,11 +145,15 @@ fn run(cli: Cli) -> Result<(), FramesError> {
                     }
                 );
                 if timestep_after {
+                    let progress = plcp::progress::Progress::spinner("time stepping", cli.quiet);
                     analysis.continue_by_time_stepping(step)?;
+                    progress.finish();
                 }
             }
             if let Some(dir) = plots {
+                let progress = plcp::progress::Progress::spinner("writing plots", cli.quiet);
                 let files = frames::plot::write_all(&analysis, &dir)?;
+                progress.finish();
                 if !json {
                     for f in files {
                         let _ = writeln!(std::io::stderr(), "wrote {}", f.display());

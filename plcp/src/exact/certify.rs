@@ -79,7 +79,9 @@ impl Certificate {
     }
     /// As JSON: `{"certified", "failure": {"segment", "reason"} or null,
     /// "breakpoints": ["4", "13/3", ...], "breakpoints_f64": [...],
-    /// "max_rel_diff", "segments", "pivots", "seconds"}`.
+    /// "max_rel_diff", "segments", "pivots", "seconds"}`. With the `json`
+    /// feature.
+    #[cfg(feature = "json")]
     pub fn to_json(&self) -> serde_json::Value {
         serde_json::json!({
             "certified": self.certified(),

@@ -1,5 +1,5 @@
-//! Reading and writing problems: plcp's JSON format ([`json`]) and the Siconos
-//! `.dat` format ([`siconos`]).
+//! Reading and writing problems: plcp's JSON format (`json`, with the `json`
+//! feature) and the Siconos `.dat` format ([`siconos`]).
 //!
 //! Every reader parses numbers as `f64` and converts them to the working
 //! precision `T` afterwards. A value that is not finite, or that overflows `T`
@@ -15,6 +15,7 @@
 //! anywhere, comments included, is an error that names the byte offset, line
 //! and column of the first bad byte ([`utf8`]).
 
+#[cfg(feature = "json")]
 pub mod json;
 pub mod siconos;
 
