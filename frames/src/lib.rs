@@ -65,6 +65,7 @@ pub mod error;
 pub mod hinge;
 pub mod integrate;
 mod kernel;
+pub mod kind;
 pub mod model;
 pub mod plot;
 pub mod report;
