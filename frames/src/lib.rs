@@ -71,6 +71,7 @@ pub mod plot;
 pub mod report;
 pub mod response;
 pub mod solve;
+pub mod space;
 pub mod stress;
 pub mod target;
 pub mod timestep;

@@ -219,6 +219,9 @@ pub struct Frame {
     pub members: Vec<Member>,
     /// Elements, member by member.
     pub elements: Vec<Element>,
+    /// For a `model = "space"` scene: the model it is solved as and the axes
+    /// of its plane ([`crate::space`]); `None` for planar and grillage scenes.
+    pub reduction: Option<crate::space::Reduction>,
 }
 
 impl Frame {
@@ -318,6 +321,7 @@ struct RawNode {
     id: Spanned<String>,
     x: Spanned<f64>,
     y: Spanned<f64>,
+    z: Option<Spanned<f64>>,
     /// An annotation (any TOML value), read and ignored.
     #[serde(default, rename = "comment")]
     _comment: Option<IgnoredAny>,
@@ -774,6 +778,26 @@ impl Scene {
         };
         let mut ids: HashMap<String, usize> = HashMap::new();
         let mut node_lines = HashMap::new();
+        let space = raw
+            .model
+            .as_ref()
+            .is_some_and(|m| m.get_ref().trim() == "space");
+        let mut model = match &raw.model {
+            None => Model::Planar,
+            Some(_) if space => Model::Planar,
+            Some(m) => match Model::from_name(m.get_ref().trim()) {
+                Some(kind) => kind,
+                None => {
+                    let other = m.get_ref().trim();
+                    return cx.err(
+                        m.span(),
+                        "model",
+                        format!("unknown model \"{other}\": expected \"planar\", \"grillage\" or \"space\""),
+                    );
+                }
+            },
+        };
+        let mut zs = Vec::with_capacity(raw.node.len());
         for n in &raw.node {
             let n = n.get_ref();
             let id = n.id.get_ref().trim().to_string();
@@ -789,6 +813,24 @@ impl Scene {
             }
             let x = cx.finite(&n.x, format!("node \"{id}\" x"))?;
             let y = cx.finite(&n.y, format!("node \"{id}\" y"))?;
+            match (&n.z, space) {
+                (Some(z), true) => zs.push(cx.finite(z, format!("node \"{id}\" z"))?),
+                (None, true) => {
+                    return cx.err(
+                        n.id.span(),
+                        format!("node \"{id}\" z"),
+                        "a node of a space scene needs z",
+                    )
+                }
+                (Some(z), false) => {
+                    return cx.err(
+                        z.span(),
+                        format!("node \"{id}\" z"),
+                        "a key of space scenes only (model = \"space\")",
+                    )
+                }
+                (None, false) => {}
+            }
             ids.insert(id.clone(), frame.nodes.len());
             node_lines.insert(frame.nodes.len(), line_of(src, n.id.span().start));
             frame.nodes.push(Node {
@@ -802,20 +844,40 @@ impl Scene {
                 generated: false,
             });
         }
-        let model = match &raw.model {
-            None => Model::Planar,
-            Some(m) => match Model::from_name(m.get_ref().trim()) {
-                Some(kind) => kind,
-                None => {
-                    let other = m.get_ref().trim();
-                    return cx.err(
-                        m.span(),
-                        "model",
-                        format!("unknown model \"{other}\": expected \"planar\" or \"grillage\""),
-                    );
+        if space {
+            let loads = raw
+                .load
+                .iter()
+                .map(|l| {
+                    let l = l.get_ref();
+                    let v = |k: &str| l.key(k).map_or(0.0, |v| *v.get_ref());
+                    ([v("fx"), v("fy"), v("fz")], [v("mx"), v("my"), v("mz")])
+                })
+                .filter(|l| l.0.iter().chain(&l.1).all(|v| v.is_finite()))
+                .collect::<Vec<_>>();
+            let points: Vec<[f64; 3]> = frame
+                .nodes
+                .iter()
+                .zip(&zs)
+                .map(|(n, &z)| [n.x, n.y, z])
+                .collect();
+            let span = raw.model.as_ref().map_or(0..0, |m| m.span());
+            if points.is_empty() {
+                return cx.err(span, "node", "the scene has no [[node]]");
+            }
+            let r = match crate::space::reduce(&points, &loads) {
+                Ok(r) => r,
+                Err(why) => return cx.err(span, "model", why),
+            };
+            if !r.global_axes {
+                for (n, p) in frame.nodes.iter_mut().zip(&points) {
+                    let l = r.to_local(*p);
+                    (n.x, n.y) = (l[0], l[1]);
                 }
-            },
-        };
+            }
+            model = r.kind;
+            frame.reduction = Some(r);
+        }
         frame.model = model;
         let default_facets = match raw
             .yield_table
@@ -851,17 +913,39 @@ impl Scene {
             };
             let from = lookup(&m.from, "from")?;
             let to = lookup(&m.to, "to")?;
+            let mut keys = Keys {
+                plastic_moment: &m.plastic_moment,
+                plastic_torque: m.plastic_torque.as_ref(),
+                plastic_axial: m.plastic_axial.as_ref(),
+                facets: m.facets.as_ref(),
+                mass_per_length: m.mass_per_length.as_ref(),
+            };
+            if space {
+                let Some(tp) = m.plastic_torque.as_ref() else {
+                    return cx.err(
+                        m.id.span(),
+                        format!("member \"{id}\" plastic_torque"),
+                        "a member of a space scene needs plastic_torque (the plastic torque Tp of the pipe)",
+                    );
+                };
+                cx.positive(tp, format!("member \"{id}\" plastic_torque"))?;
+                // the reduced model's section: the other capacity is not an unknown
+                match model {
+                    Model::Planar => {
+                        keys.plastic_torque = None;
+                        if keys.plastic_axial.is_none() {
+                            // the polyhedron's cross-section at T = N = 0: +-Mp
+                            keys.facets = None;
+                        }
+                    }
+                    Model::Grillage => keys.plastic_axial = None,
+                }
+            }
             let (mp, interaction, mu) = cx.strength(
                 model,
                 &format!("member \"{id}\""),
                 &m.id,
-                Keys {
-                    plastic_moment: &m.plastic_moment,
-                    plastic_torque: m.plastic_torque.as_ref(),
-                    plastic_axial: m.plastic_axial.as_ref(),
-                    facets: m.facets.as_ref(),
-                    mass_per_length: m.mass_per_length.as_ref(),
-                },
+                keys,
                 default_facets,
             )?;
             let n = match &m.elements {
@@ -907,6 +991,13 @@ impl Scene {
         }
         for arc in &raw.arc {
             let r = arc.get_ref();
+            if space {
+                return cx.err(
+                    r.id.span(),
+                    "arc",
+                    "arcs are not available in space scenes yet: give the elbow as straight [[member]]s",
+                );
+            }
             let id = r.id.get_ref().trim().to_string();
             if id.is_empty() {
                 return cx.err(r.id.span(), "arc id", "must not be empty");
@@ -1043,6 +1134,25 @@ impl Scene {
             if supported.insert(i, ()).is_some() {
                 return cx.err(s.node.span(), format!("support \"{nid}\" node"), format!("a second [[support]] for node \"{nid}\" (list every fixed component in one)"));
             }
+            if let Some(r) = &frame.reduction {
+                const SIX: [&str; 6] = ["x", "y", "z", "rx", "ry", "rz"];
+                let mut fixed = [false; 6];
+                for c in s.fix.get_ref() {
+                    let Some(k) = SIX.iter().position(|k| *k == c.get_ref().as_str()) else {
+                        return cx.err(
+                            c.span(),
+                            format!("support \"{nid}\" fix"),
+                            format!("unknown component \"{}\": expected \"x\", \"y\", \"z\", \"rx\", \"ry\" or \"rz\" (model = \"space\")", c.get_ref()),
+                        );
+                    };
+                    fixed[k] = true;
+                }
+                match crate::space::local_fixed(r, fixed) {
+                    Ok(f) => frame.nodes[i].fixed = f,
+                    Err(why) => return cx.err(s.fix.span(), format!("support \"{nid}\" fix"), why),
+                }
+                continue;
+            }
             let comps = model.components();
             for c in s.fix.get_ref() {
                 let Some(k) = comps
@@ -1077,6 +1187,23 @@ impl Scene {
             let l = l.get_ref();
             let i = node_ref(&l.node, "load")?;
             let nid = frame.nodes[i].id.clone();
+            if let Some(r) = &frame.reduction {
+                let mut v = [0.0; 6];
+                for (k, name) in ["fx", "fy", "fz", "mx", "my", "mz"].into_iter().enumerate() {
+                    if let Some(x) = l.key(name) {
+                        v[k] = cx.finite(x, format!("load \"{nid}\" {name}"))?;
+                        let line = line_of(src, x.span().start);
+                        for c in 0..3 {
+                            load_lines.entry((i, c)).or_insert(line);
+                        }
+                    }
+                }
+                let local = crate::space::local_load(r, ([v[0], v[1], v[2]], [v[3], v[4], v[5]]));
+                for (k, x) in local.into_iter().enumerate() {
+                    frame.nodes[i].load[k] += x;
+                }
+                continue;
+            }
             for name in model.foreign_load_keys() {
                 if let Some(v) = l.key(name) {
                     let [a, b, c] = model.load_keys();
@@ -1108,7 +1235,14 @@ impl Scene {
         for t in &raw.target {
             let t = t.get_ref();
             let node = node_ref(&t.node, "target")?;
-            targets.push(parse_target(&cx, model, &frame.nodes[node].id, node, t)?);
+            targets.push(parse_target(
+                &cx,
+                model,
+                frame.reduction.as_ref(),
+                &frame.nodes[node].id,
+                node,
+                t,
+            )?);
         }
         if frame.members.is_empty() {
             return cx.err(0..0, "member", "the scene has no [[member]]");
@@ -1179,6 +1313,7 @@ impl Scene {
 fn parse_target(
     cx: &Ctx<'_>,
     model: Model,
+    reduction: Option<&crate::space::Reduction>,
     nid: &str,
     node: usize,
     t: &RawTarget,
@@ -1192,6 +1327,22 @@ fn parse_target(
             format!("must be three finite numbers [dx, dy, dz], got {d:?}"),
         );
     }
+    // a space scene: the direction in the plane's axes, rounding snapped to zero
+    let local;
+    let d = match reduction {
+        None => d,
+        Some(r) => {
+            let mut l = r.to_local([d[0], d[1], d[2]]);
+            let scale = l.iter().fold(0.0f64, |s, v| s.max(v.abs()));
+            for v in &mut l {
+                if v.abs() <= crate::space::PLANE_TOLERANCE * scale {
+                    *v = 0.0;
+                }
+            }
+            local = l.to_vec();
+            &local
+        }
+    };
     let (zero, which) = model.target_zero();
     if zero.iter().any(|&k| d[k] != 0.0) {
         return cx.err(
