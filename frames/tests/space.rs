@@ -335,3 +335,65 @@ fn a_vertical_frame_is_planar_or_grillage_by_its_loads() {
         .to_string();
     assert!(err.contains("needs z"), "{err}");
 }
+
+/// The riser run of `scenes/pipe-whip/riser.toml` under a ramp (`lambda = t`).
+fn riser_ramp() -> Analysis {
+    let path = format!(
+        "{}/../scenes/pipe-whip/riser.toml",
+        env!("CARGO_MANIFEST_DIR")
+    );
+    let src = std::fs::read_to_string(path).unwrap();
+    let cut = src.find("[history]").unwrap();
+    run(&src[..cut], "riser.toml")
+}
+
+#[test]
+fn time_stepping_follows_the_path_on_a_space_scene() {
+    use frames::timestep::{compare, plcp_valid_until, StepOptions, StepState, TimeStepping};
+    let a = riser_ramp();
+    assert!(a.scene.frame.reduction.is_some());
+    let (lambda, t) = plcp_valid_until(&a).expect("the path unloads at the elbow");
+    let elbow = a.system.sections[a.reading.deactivations()[0].1.section].node;
+    assert_eq!(a.scene.frame.nodes[elbow].id, "E");
+    let t_end = 1.3 * t;
+    let mut errors = Vec::new();
+    for steps in [500.0, 1000.0] {
+        let h = t_end / steps;
+        let options = StepOptions {
+            h,
+            t_end,
+            ..StepOptions::default()
+        };
+        let r = TimeStepping::new(&a.system, &a.scene.history, &options)
+            .unwrap()
+            .run(&StepState::rest(&a.system))
+            .unwrap();
+        assert!(r.outcome.is_completed(), "{:?}", r.outcome);
+        let c = compare(&a, &r);
+        assert_eq!(c.extra_activations, 0, "h = {h}");
+        assert!(
+            c.activation_error <= 2.0 * h,
+            "h = {h}: {}",
+            c.activation_error
+        );
+        errors.push(c.displacement_error / c.displacement_scale);
+        // the non-deactivation check: the elbow hinge the path unloads slows
+        // down in the stepped response too, within two steps of the path
+        let first = r
+            .decelerations()
+            .first()
+            .map(|e| (e.t, a.system.sections[e.section].node))
+            .expect("a deceleration");
+        assert_eq!(
+            first.1, elbow,
+            "h = {h}: first deceleration at another node"
+        );
+        assert!(
+            (first.0 - t).abs() <= 2.0 * h,
+            "h = {h}: {} vs {t} (Lambda {lambda})",
+            first.0
+        );
+    }
+    assert!(errors[1] < errors[0], "{errors:?}");
+    assert!(errors[1] < 1e-2, "{errors:?}");
+}
