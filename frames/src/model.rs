@@ -64,6 +64,11 @@
 //! # kind = "saturating", peak = 5.0, tau = 0.5                         lambda = peak (1 - exp(-t/tau))
 //! ```
 //!
+//! **Space scenes.** `model = "space"`: nodes take `z` too, supports fix any of
+//! `"x", "y", "z", "rx", "ry", "rz"`, loads are `fx, fy, fz, mx, my, mz`, every
+//! member needs `plastic_torque`; the scene is solved as planar or grillage in
+//! the plane of its nodes, as its loads need ([`crate::space`]; no arcs yet).
+//!
 //! **Models.** `model = "planar"` (the default: every file without the key is
 //! planar, as before) or `model = "grillage"`. In a grillage the frame lies in
 //! the x-y plane; nodes move in z and rotate about x and y (right-handed):
