@@ -14,7 +14,12 @@
 //!
 //! - an L-shaped run loaded along its broken leg by a thrust rising to a
 //!   plateau, with a restraint at a gap from the break (`[[target]]`): when the
-//!   pipe reaches it, how fast, and the kinetic energy the restraint must absorb.
+//!   pipe reaches it, how fast, and the kinetic energy the restraint must absorb;
+//! - a space scene (`model = "space"`): a horizontal run, an elbow and a riser
+//!   in a vertical plane, the thrust along the broken riser, alone (`riser`,
+//!   in the tables and the time-stepping check) and with a restraint at the
+//!   elbow (`riser-restraint`); both are reduced to the planar model in their
+//!   plane automatically (the report says so).
 //!
 //! Units: radius or leg length 1, Mp = 1, Tp / Mp = pi / (2 sqrt 3) (thin-walled
 //! pipe, von Mises), mass per length 1, lambda(t) = t.
@@ -90,6 +95,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         "l-shaped",
         "semicircle",
         "straight",
+        "riser",
     ];
     println!("==== the scenes ====");
     println!(
@@ -118,7 +124,10 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         println!(
             "{:<16} {:>9} {:>22} {:>22} {:>10} {:>10} {:>15}",
             name,
-            a.scene.frame.model.as_str(),
+            match &a.scene.frame.reduction {
+                Some(r) => format!("space:{}", r.kind.as_str()),
+                None => a.scene.frame.model.as_str().to_string(),
+            },
             format!("({}, {}, {})", f.coordinates, f.forces, f.modes),
             format!("({}, {}, {})", s.coordinates, s.forces, s.modes),
             g(a.reading.collapse_load().unwrap_or(f64::NAN)),
@@ -469,7 +478,13 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     println!(
         "whose rate falls is a deactivation of that mode: (9) is the response only up to it.)"
     );
-    restraint(&scenes, &out)?;
+    restraint(&scenes, &out, "restraint", "C along the broken leg (-y)")?;
+    restraint(
+        &scenes,
+        &out,
+        "riser-restraint",
+        "D along the broken riser (-z), target at the elbow's end C along -z",
+    )?;
     println!("reports and plots in {}", out.display());
     Ok(())
 }
@@ -477,9 +492,13 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
 /// The restraint scene: when the whipping pipe closes the gap to its
 /// restraint, how fast, and with what kinetic energy, for a few gaps; exact
 /// from the PLCP response, and by the time-stepping integrator at two steps.
-fn restraint(scenes: &Path, out: &Path) -> Result<(), Box<dyn std::error::Error>> {
+fn restraint(
+    scenes: &Path,
+    out: &Path,
+    name: &str,
+    thrust: &str,
+) -> Result<(), Box<dyn std::error::Error>> {
     use frames::timestep::{StepOptions, StepState, TimeStepping};
-    let name = "restraint";
     let file = scenes.join(format!("{name}.toml"));
     let a = analyse(Scene::from_file(&file)?)?;
     let dir = out.join(name);
@@ -491,10 +510,10 @@ fn restraint(scenes: &Path, out: &Path) -> Result<(), Box<dyn std::error::Error>
     )?;
     frames::plot::write_all(&a, &dir)?;
     println!();
-    println!("==== restraint: when the whipping pipe reaches it ====");
+    println!("==== {name}: when the whipping pipe reaches the restraint ====");
     println!("{}: {}", name, a.scene.frame.title);
     println!(
-        "thrust at C along the broken leg (-y), {}; collapse load {}",
+        "thrust at {thrust}, {}; collapse load {}",
         a.scene.history.describe(),
         g(a.reading.collapse_load().unwrap_or(f64::NAN))
     );
@@ -550,7 +569,7 @@ fn restraint(scenes: &Path, out: &Path) -> Result<(), Box<dyn std::error::Error>
             .collect();
         println!("{:>6} {exact}   {}", g(gap), by_steps.join("   "));
     }
-    println!("(exact: the first root of the piecewise polynomial displacement along -y at C;");
+    println!("(exact: the first root of the piecewise polynomial displacement along the target;");
     println!("energy: kinetic energy of the whole run then. (h), (h/2): the first step of the");
     println!(
         "time-stepping integrator, h = {} and {}, whose displacement reaches the gap.)",

@@ -67,6 +67,7 @@
 //! coordinates (for checks).
 
 use crate::kernel::null_space;
+use crate::kind::ElementRow;
 use crate::model::{Component, Frame, Model};
 use crate::yield_surface::Polygon;
 use faer::{Col, Mat};
@@ -327,13 +328,9 @@ fn full_blocks(frame: &Frame) -> Full {
     }
     // forces: the moments of all sections, then the axial force or torque of each element
     let mut forces: Vec<MemberForce> = (0..2 * ne).map(MemberForce::Moment).collect();
-    forces.extend((0..ne).map(|e| match model {
-        Model::Planar => MemberForce::Axial(e),
-        Model::Grillage => MemberForce::Torque(e),
-    }));
+    forces.extend((0..ne).map(|e| model.second_force(e)));
     let mut a: Vec<Vec<(usize, f64)>> = vec![Vec::new(); 3 * ne];
     for (e, el) in frame.elements.iter().enumerate() {
-        let (c, s, h) = (el.cos, el.sin, el.length);
         let ia = index[el.from];
         let ib = index[el.to];
         let mut add = |row: usize, idx: Option<usize>, v: f64| {
@@ -348,53 +345,14 @@ fn full_blocks(frame: &Frame) -> Full {
             }
         };
         let (rf, rt, rn) = (2 * e, 2 * e + 1, 2 * ne + e);
-        match model {
-            Model::Planar => {
-                // psi = (-s (uxb - uxa) + c (uyb - uya)) / h
-                let psi = [
-                    (ia[0], s / h),
-                    (ia[1], -c / h),
-                    (ib[0], -s / h),
-                    (ib[1], c / h),
-                ];
-                // from section: -(theta_a - psi)
-                add(rf, ia[2], -1.0);
-                for &(j, v) in &psi {
-                    add(rf, j, v);
-                }
-                // to section: theta_b - psi
-                add(rt, ib[2], 1.0);
-                for &(j, v) in &psi {
-                    add(rt, j, -v);
-                }
-                // elongation
-                add(rn, ia[0], -c);
-                add(rn, ia[1], -s);
-                add(rn, ib[0], c);
-                add(rn, ib[1], s);
-            }
-            Model::Grillage => {
-                // psi = -(w_b - w_a) / h; theta = -s r_x + c r_y; phi = c r_x + s r_y
-                let psi = [(ia[0], 1.0 / h), (ib[0], -1.0 / h)];
-                // from section: -(theta_a - psi)
-                add(rf, ia[1], s);
-                add(rf, ia[2], -c);
-                for &(j, v) in &psi {
-                    add(rf, j, v);
-                }
-                // to section: theta_b - psi
-                add(rt, ib[1], -s);
-                add(rt, ib[2], c);
-                for &(j, v) in &psi {
-                    add(rt, j, -v);
-                }
-                // twist phi_b - phi_a
-                add(rn, ia[1], -c);
-                add(rn, ia[2], -s);
-                add(rn, ib[1], c);
-                add(rn, ib[2], s);
-            }
-        }
+        model.element_rows(el, ia, ib, &mut |row, j, v| {
+            let r = match row {
+                ElementRow::From => rf,
+                ElementRow::To => rt,
+                ElementRow::Second => rn,
+            };
+            add(r, j, v)
+        });
     }
     // entries that cancelled (an element's two ends on one coordinate) are zeros
     for row in &mut a {
@@ -505,25 +463,7 @@ fn rigid_sections(frame: &Frame, sections: &[CriticalSection]) -> Vec<[usize; 2]
             &frame.elements[sections[a].element],
             &frame.elements[sections[b].element],
         );
-        let tied = match frame.model {
-            Model::Planar => {
-                !n.fixed[2]
-                    && n.load[2] == 0.0
-                    && ea.interaction.is_none()
-                    && eb.interaction.is_none()
-            }
-            Model::Grillage => {
-                let collinear = (ea.cos == eb.cos && ea.sin == eb.sin)
-                    || (ea.cos == -eb.cos && ea.sin == -eb.sin);
-                !n.fixed[1]
-                    && !n.fixed[2]
-                    && n.load[1] == 0.0
-                    && n.load[2] == 0.0
-                    && collinear
-                    && ea.plastic_moment == eb.plastic_moment
-                    && ea.interaction == eb.interaction
-            }
-        };
+        let tied = frame.model.tied(n, ea, eb);
         if tied {
             let drop = if sections[b].plastic_moment >= sections[a].plastic_moment {
                 b
@@ -559,7 +499,7 @@ pub fn massless_mechanism(frame: &Frame) -> Option<(usize, Component)> {
     // of the rows and columns that touch, found densely.
     let ne = frame.elements.len();
     let rigid_rows: Vec<usize> = (0..ne)
-        .filter(|&e| frame.model == Model::Planar && frame.elements[e].interaction.is_none())
+        .filter(|&e| frame.model.second_force_is_rigid(&frame.elements[e]))
         .map(|e| 2 * ne + e)
         .collect();
     let mut position = vec![None; f.coords.len()];

@@ -170,6 +170,9 @@ impl Analysis {
             3 * nn,
             3 * fr.elements.len()
         ));
+        if let Some(r) = &fr.reduction {
+            out.push(r.summary());
+        }
         if lo.full_assembly {
             out.push("nothing else (full assembly: no ties, no decoupled parts left out)".into());
         }
