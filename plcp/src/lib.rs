@@ -64,6 +64,7 @@ pub mod io;
 pub mod lemke;
 pub mod linalg;
 pub mod matrix;
+pub mod observe;
 pub mod path;
 mod pivoting;
 pub mod problem;
@@ -79,6 +80,7 @@ pub use error::PlcpError;
 pub use escalate::Escalation;
 pub use exact::{certify, Certificate};
 pub use lemke::{solve_lcp, LcpSolution};
+pub use observe::{solve_observed, CompactPath, Control, Keep, Observer, Progress};
 pub use path::{Breakpoint, FreeBlockInfo, Info, Path, Point, Ray, Residual, Segment, Status, Var};
 pub use problem::{Lcp, Plcp};
 pub use scalar::{Precision, Scalar};
@@ -96,6 +98,7 @@ pub use settings::{BasisKind, Method, Settings, DEFAULT_REFACTOR_PERIOD};
 pub fn solve<T: Scalar>(problem: &Plcp<T>, settings: &Settings<T>) -> Result<Path<T>, PlcpError> {
     let mut path = solve_unchecked(problem, settings)?;
     guard_residual(&mut path);
+    path.info.path_bytes = observe::path_bytes(&path);
     if settings.escalate && escalate::needs_fx128(&path) {
         escalate::continue_in_fx128(problem, settings, &mut path);
         if path.info.escalation.is_some() {

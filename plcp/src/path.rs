@@ -63,6 +63,9 @@ pub enum Status {
     /// on a secondary ray; for copositive-plus `M` this proves infeasibility),
     /// or the equality rows are inconsistent.
     Infeasible,
+    /// An [`crate::observe::Observer`] stopped the trace at `lambda_reached`
+    /// (the end of the last segment it saw).
+    StoppedByObserver,
 }
 
 impl Status {
@@ -75,6 +78,7 @@ impl Status {
             Status::PivotLimit => "pivot_limit",
             Status::IllConditioned => "ill_conditioned",
             Status::Infeasible => "infeasible",
+            Status::StoppedByObserver => "stopped_by_observer",
         }
     }
     /// True when the path covers the whole requested range.
@@ -307,6 +311,10 @@ pub struct Info {
     /// The exact certificate of the path, when [`crate::Settings::certify`]
     /// asked for one.
     pub certificate: Option<crate::exact::Certificate>,
+    /// Bytes held by the returned path (segments, breakpoints, end, ray, and
+    /// a [`crate::observe::CompactPath`] when one was kept): the memory model
+    /// is in [`crate::observe`].
+    pub path_bytes: usize,
 }
 
 /// A secondary or unbounded ray: the last point plus `t` times a direction, `t >= 0`.

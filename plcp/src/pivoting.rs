@@ -451,18 +451,23 @@ impl<'a, T: Scalar> Engine<'a, T> {
         // a segment starts with the driver at zero
         let start = self.point(Some((driver, T::zero())));
         let (dz, dw, du) = self.slopes(driver, col, rate);
-        rec.segments.push(Segment {
-            lambda_from: self.lambda,
-            lambda_to,
-            unbounded,
-            basis: self.segment_basis(driver),
-            z_from: start.z,
-            dz,
-            w_from: start.w,
-            dw,
-            u_from: start.u,
-            du,
-        });
+        crate::observe::record(
+            &mut rec.segments,
+            &rec.breakpoints,
+            self.pivots,
+            Segment {
+                lambda_from: self.lambda,
+                lambda_to,
+                unbounded,
+                basis: self.segment_basis(driver),
+                z_from: start.z,
+                dz,
+                w_from: start.w,
+                dw,
+                u_from: start.u,
+                du,
+            },
+        );
     }
 
     /// The minimum-ratio test with the lexicographic rule. Returns the row and the step.
@@ -1079,7 +1084,7 @@ impl<'a, T: Scalar> Engine<'a, T> {
             return TraceEnd::Stalled("internal: trace must start with L nonbasic".into());
         }
         loop {
-            if self.pivots >= self.max_pivots {
+            if self.pivots >= self.max_pivots || crate::observe::stop_requested() {
                 return TraceEnd::PivotLimit;
             }
             // the entering column refined inside its solve, where the basis can
