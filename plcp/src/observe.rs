@@ -50,14 +50,15 @@
 //!     .unwrap()
 //!     .with_range(0.0, Some(10.0))
 //!     .unwrap();
-//! // keep only the largest z seen, and stop once L passes 2
+//! // stop after the first segment that passes L = 0.5
 //! let watch = |s: &Segment<f64>, _: &Progress<'_, f64>| {
-//!     if s.lambda_to > 2.0 { Control::Stop } else { Control::Continue }
+//!     if s.lambda_to > 0.5 { Control::Stop } else { Control::Continue }
 //! };
 //! let run = solve_observed(&problem, &Settings::default(), watch, Keep::Nothing).unwrap();
 //! assert_eq!(run.path.status, Status::StoppedByObserver);
 //! assert!(run.path.segments.is_empty());
-//! assert_eq!(run.path.breakpoints[0].lambda, 1.0); // w0 = 1 - L reaches zero at L = 1
+//! assert_eq!(run.path.lambda_reached, 1.0); // w0 = 1 - L reaches zero at L = 1
+//! assert_eq!(run.path.breakpoints.len(), 1);
 //! ```
 
 use crate::path::{Breakpoint, Path, Point, Segment, Status, Var};
@@ -85,7 +86,7 @@ pub struct Progress<'a, T: Scalar> {
     /// Index of the segment in path order.
     pub index: usize,
     /// Pivots so far (all phases; when the path is shown after the trace,
-    /// [`Keep`]'s limits: the breakpoints so far).
+    /// see the module's limits: the breakpoints so far).
     pub pivots: usize,
     /// The event at the segment's start (`None` for the first segment), with
     /// the residual the trace measured there (L, entering, leaving, residual).
