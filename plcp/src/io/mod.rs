@@ -17,6 +17,7 @@
 
 pub mod json;
 pub mod siconos;
+pub mod sparse_json;
 
 use crate::error::PlcpError;
 use crate::scalar::Scalar;
