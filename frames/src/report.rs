@@ -46,6 +46,136 @@ fn fmt_g(x: f64) -> String {
     }
 }
 
+/// Which Lambda values get moment distributions (and which intervals their
+/// pieces) in the JSON report.
+#[derive(Clone, Debug, PartialEq)]
+pub enum MomentPick {
+    /// Every breakpoint and interval.
+    All,
+    /// At most this many, sampled evenly over the breakpoints (first and last kept).
+    Count(usize),
+    /// The breakpoints nearest these Lambda values, and the intervals holding them.
+    At(Vec<f64>),
+}
+
+/// Which nodes get accelerations and the time response in the JSON report.
+#[derive(Clone, Debug, PartialEq)]
+pub enum NodePick {
+    /// Every node.
+    All,
+    /// At most this many, sampled evenly over the node list (first and last kept).
+    Count(usize),
+    /// These node ids.
+    Ids(Vec<String>),
+}
+
+/// What the JSON report writes beyond what it always writes (every
+/// breakpoint's events, every interval's hinge sets): moment distributions
+/// and node series grow with `breakpoints x sections` and `nodes x times`, so
+/// large scenes get a bounded default ([`OutputSelection::default_for`]).
+#[derive(Clone, Debug, PartialEq)]
+pub struct OutputSelection {
+    /// Moment distributions.
+    pub moments: MomentPick,
+    /// Node accelerations and displacement/velocity series.
+    pub nodes: NodePick,
+}
+
+/// Scenes up to this many nodes and breakpoints report everything by default.
+pub const SMALL_SCENE: usize = 200;
+/// The default number of Lambda values with moment distributions, and of
+/// nodes with series, for larger scenes.
+pub const DEFAULT_SAMPLES: usize = 20;
+
+/// `count` indices of `0..len`, evenly spaced, the first and the last kept.
+pub fn sample_indices(len: usize, count: usize) -> Vec<usize> {
+    if count == 0 || len == 0 {
+        return Vec::new();
+    }
+    if len <= count {
+        return (0..len).collect();
+    }
+    if count == 1 {
+        return vec![len - 1];
+    }
+    let mut v: Vec<usize> = (0..count)
+        .map(|k| ((k as f64) * ((len - 1) as f64) / ((count - 1) as f64)).round() as usize)
+        .collect();
+    v.dedup();
+    v
+}
+
+impl OutputSelection {
+    /// Everything.
+    pub fn all() -> Self {
+        Self {
+            moments: MomentPick::All,
+            nodes: NodePick::All,
+        }
+    }
+    /// Everything for a small scene (at most [`SMALL_SCENE`] nodes and
+    /// breakpoints); otherwise [`DEFAULT_SAMPLES`] Lambda values and nodes.
+    pub fn default_for(a: &Analysis) -> Self {
+        let nodes = a.scene.frame.nodes.len();
+        let bps = a.reading.breakpoints.len();
+        Self {
+            moments: if bps <= SMALL_SCENE && nodes <= SMALL_SCENE {
+                MomentPick::All
+            } else {
+                MomentPick::Count(DEFAULT_SAMPLES)
+            },
+            nodes: if nodes <= SMALL_SCENE {
+                NodePick::All
+            } else {
+                NodePick::Count(DEFAULT_SAMPLES)
+            },
+        }
+    }
+    /// The node indices selected out of `ids`; `Err` names an unknown id.
+    pub fn node_indices(&self, ids: &[&str]) -> Result<Vec<usize>, String> {
+        match &self.nodes {
+            NodePick::All => Ok((0..ids.len()).collect()),
+            NodePick::Count(c) => Ok(sample_indices(ids.len(), *c)),
+            NodePick::Ids(want) => want
+                .iter()
+                .map(|w| {
+                    ids.iter()
+                        .position(|i| i == w)
+                        .ok_or_else(|| format!("--nodes: no node \"{w}\" in the scene"))
+                })
+                .collect(),
+        }
+    }
+    /// Which of `lambdas` (in order) get moment distributions.
+    pub fn moment_indices(&self, lambdas: &[f64]) -> Vec<usize> {
+        match &self.moments {
+            MomentPick::All => (0..lambdas.len()).collect(),
+            MomentPick::Count(c) => sample_indices(lambdas.len(), *c),
+            MomentPick::At(ls) => {
+                let mut v: Vec<usize> = ls
+                    .iter()
+                    .filter_map(|l| {
+                        (0..lambdas.len()).min_by(|&a, &b| {
+                            (lambdas[a] - l).abs().total_cmp(&(lambdas[b] - l).abs())
+                        })
+                    })
+                    .collect();
+                v.sort_unstable();
+                v.dedup();
+                v
+            }
+        }
+    }
+    /// One line for the report: what was selected out of how many.
+    fn describe(&self, what: &str, kept: usize, of: usize, flag: &str) -> String {
+        if kept == of {
+            format!("{what}: all {of}")
+        } else {
+            format!("{what}: {kept} of {of} (sampled; {flag} all, a count, or a list)")
+        }
+    }
+}
+
 impl Analysis {
     fn section_json(&self, section: usize, sign: &str, tied: &[usize]) -> Value {
         let n = section_name(&self.scene.frame, &self.system, section);
@@ -280,7 +410,31 @@ impl Analysis {
 
     /// The JSON document (`--json`).
     pub fn to_json(&self) -> Value {
+        self.to_json_selected(&OutputSelection::default_for(self))
+            .expect("the default selection names no node")
+    }
+
+    /// The JSON document with moment distributions and node series where
+    /// `sel` asks for them (see [`OutputSelection`]); `Err` names an unknown
+    /// node id.
+    pub fn to_json_selected(&self, sel: &OutputSelection) -> Result<Value, String> {
         let fr = &self.scene.frame;
+        let node_ids: Vec<&str> = fr.nodes.iter().map(|n| n.id.as_str()).collect();
+        let node_sel = sel.node_indices(&node_ids)?;
+        let interval_lambdas: Vec<f64> = self
+            .reading
+            .intervals
+            .iter()
+            .map(|iv| iv.lambda_from)
+            .collect();
+        let interval_sel = sel.moment_indices(&interval_lambdas);
+        let diagram_lambdas: Vec<f64> = self
+            .response
+            .moments_at_breakpoints
+            .iter()
+            .map(|d| d.lambda)
+            .collect();
+        let diagram_sel = sel.moment_indices(&diagram_lambdas);
         let sys = &self.system;
         let sz = sys.sizes();
         let lo = &sys.left_out;
@@ -383,9 +537,11 @@ impl Analysis {
             .intervals
             .iter()
             .zip(&self.response.intervals)
-            .map(|(iv, r)| {
+            .enumerate()
+            .map(|(k, (iv, r))| {
                 let mut acc = Map::new();
-                for (i, n) in fr.nodes.iter().enumerate() {
+                for &i in &node_sel {
+                    let n = &fr.nodes[i];
                     let mut o = Map::new();
                     for c in fr.model.components() {
                         o.insert(c.as_str().into(), json!(r.accelerations[i][c.index()]));
@@ -395,9 +551,11 @@ impl Analysis {
                 // the member forces piece by piece; at the interval's level
                 // only where one piece holds the whole interval (null where
                 // the path pivots inside it: no one affine field is right)
+                let with_moments = interval_sel.binary_search(&k).is_ok();
                 let pieces: Vec<Value> = r
                     .pieces
                     .iter()
+                    .filter(|_| with_moments)
                     .map(|p| {
                         json!({
                             "lambda_from": num(p.lambda_from),
@@ -430,11 +588,15 @@ impl Analysis {
             .moments_at_breakpoints
             .iter()
             .zip(self.reading.intervals.iter().filter(|i| !i.rigid))
+            .enumerate()
+            .filter(|(k, _)| diagram_sel.binary_search(k).is_ok())
+            .map(|(_, x)| x)
             .map(|(d, iv)| json!({"lambda": num(d.lambda), "members": self.member_moments(|k| d.moments[k]), "second_forces": self.member_second_forces(&self.solution.pieces[iv.piece_at(d.lambda)], Some(d.lambda))}))
             .collect();
         let t = &self.response.time;
         let mut nodes = Map::new();
-        for (i, n) in fr.nodes.iter().enumerate() {
+        for &i in &node_sel {
+            let n = &fr.nodes[i];
             let series = |v: &Vec<Vec<[f64; 3]>>| {
                 let mut o = Map::new();
                 for c in fr.model.components() {
@@ -450,9 +612,15 @@ impl Analysis {
                 json!({"displacement": series(&t.displacement), "velocity": series(&t.velocity)}),
             );
         }
-        json!({
+        let output = json!({
+            "moments": sel.describe("Lambda values with moment distributions", diagram_sel.len(), diagram_lambdas.len(), "--moments"),
+            "interval_moments": sel.describe("intervals with moment pieces", interval_sel.len(), interval_lambdas.len(), "--moments"),
+            "nodes": sel.describe("nodes with accelerations and series", node_sel.len(), node_ids.len(), "--nodes"),
+        });
+        Ok(json!({
             "scene": self.scene.file,
             "title": fr.title,
+            "output": output,
             "system": system,
             "solver": solver,
             "status": self.solution.status.as_str(),
@@ -474,7 +642,7 @@ impl Analysis {
                 "lambda": t.lambda,
                 "nodes": nodes,
             },
-        })
+        }))
     }
 
     /// Per member: `from`, `to` and `along` (`[s, value]` at every element end).

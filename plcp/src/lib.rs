@@ -68,6 +68,7 @@ pub mod io;
 mod lemke;
 mod linalg;
 pub mod matrix;
+mod observe;
 mod path;
 mod pivoting;
 mod problem;
@@ -88,6 +89,7 @@ pub use error::PlcpError;
 pub use escalate::Escalation;
 pub use exact::{certify, Certificate};
 pub use lemke::{solve_lcp, LcpSolution};
+pub use observe::{solve_observed, CompactPath, Control, Keep, Observer, Progress};
 pub use path::{Breakpoint, FreeBlockInfo, Info, Path, Point, Ray, Residual, Segment, Status, Var};
 pub use problem::{Lcp, Plcp};
 pub use scalar::{infinity, Precision, Scalar};
@@ -106,6 +108,7 @@ pub use solver::Solver;
 /// outcome of the algorithm itself is a [`Status`] in the returned path.
 pub fn solve<T: Scalar>(problem: &Plcp<T>, settings: &Settings<T>) -> Result<Path<T>, PlcpError> {
     let mut path = trace::trace(problem, settings)?;
+    path.info.path_bytes = observe::path_bytes(&path);
     if settings.escalate && escalate::needs_fx128(&path) {
         escalate::continue_in_fx128(problem, settings, &mut path);
         if path.info.escalation.is_some() {

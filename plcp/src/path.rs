@@ -79,6 +79,9 @@ pub enum Status {
     /// on a secondary ray; for copositive-plus `M` this proves infeasibility),
     /// or the equality rows are inconsistent.
     Infeasible,
+    /// An [`crate::observe::Observer`] stopped the trace at `lambda_reached`
+    /// (the end of the last segment it saw).
+    StoppedByObserver,
 }
 
 impl Status {
@@ -91,6 +94,7 @@ impl Status {
             Status::PivotLimit => "pivot_limit",
             Status::IllConditioned => "ill_conditioned",
             Status::Infeasible => "infeasible",
+            Status::StoppedByObserver => "stopped_by_observer",
         }
     }
     /// True when the path covers the whole requested range.
@@ -352,6 +356,10 @@ pub struct Info {
     /// The exact certificate of the path, when it came from
     /// [`crate::solve_certified`].
     pub certificate: Option<crate::exact::Certificate>,
+    /// Bytes held by the returned path (segments, breakpoints, end, ray, and
+    /// a [`crate::observe::CompactPath`] when one was kept): the memory model
+    /// is in [`crate::observe`].
+    pub path_bytes: usize,
 }
 
 /// A secondary or unbounded ray: the last point plus `t` times a direction, `t >= 0`.

@@ -61,6 +61,15 @@ enum Command {
         /// Time step of --timestep-after, as a fraction of the response time.
         #[arg(long, value_name = "H", default_value_t = 1e-3)]
         step: f64,
+        /// JSON moment distributions: all, a count N (sampled evenly), or
+        /// Lambda values L1,L2,... (the nearest breakpoints). Default: all for
+        /// scenes of at most 200 nodes and breakpoints, else 20.
+        #[arg(long, value_name = "all|N|L1,L2,...", value_parser = parse_moments)]
+        moments: Option<frames::report::MomentPick>,
+        /// JSON node accelerations and series: all, a count N (sampled evenly),
+        /// or node ids A,B,... Default: all up to 200 nodes, else 20.
+        #[arg(long, value_name = "all|N|ID,ID,...", value_parser = parse_nodes)]
+        nodes: Option<frames::report::NodePick>,
     },
     /// Print the mixed PLCP of system (9) as plcp's JSON input.
     Export {
@@ -92,6 +101,41 @@ fn parse_precision(s: &str) -> Result<FramePrecision, String> {
         .map_err(|_| format!("unknown precision '{s}': expected f32, f64, f128 or exact"))
 }
 
+fn parse_moments(s: &str) -> Result<frames::report::MomentPick, String> {
+    use frames::report::MomentPick;
+    if s == "all" {
+        return Ok(MomentPick::All);
+    }
+    if let Ok(n) = s.parse::<usize>() {
+        return Ok(MomentPick::Count(n));
+    }
+    s.split(',')
+        .map(|x| {
+            x.trim()
+                .parse::<f64>()
+                .ok()
+                .filter(|v| v.is_finite())
+                .ok_or_else(|| {
+                    format!("'{x}' is not a Lambda value (expected all, a count, or L1,L2,...)")
+                })
+        })
+        .collect::<Result<Vec<_>, _>>()
+        .map(MomentPick::At)
+}
+
+fn parse_nodes(s: &str) -> Result<frames::report::NodePick, String> {
+    use frames::report::NodePick;
+    if s == "all" {
+        return Ok(NodePick::All);
+    }
+    if let Ok(n) = s.parse::<usize>() {
+        return Ok(NodePick::Count(n));
+    }
+    Ok(NodePick::Ids(
+        s.split(',').map(|x| x.trim().to_string()).collect(),
+    ))
+}
+
 /// Writes to stdout; a closed pipe (`frames run ... | head`) is not an error.
 fn out(text: &str) {
     let _ = std::io::stdout().write_all(text.as_bytes());
@@ -111,6 +155,8 @@ fn run(cli: Cli) -> Result<(), FramesError> {
             t_end,
             timestep_after,
             step,
+            moments,
+            nodes,
         } => {
             let scene = Scene::from_file(&scene)?;
             let options = AnalysisOptions {
@@ -161,14 +207,38 @@ fn run(cli: Cli) -> Result<(), FramesError> {
                 }
             }
             if json {
-                let mut doc = analysis.to_json();
+                let mut sel = frames::report::OutputSelection::default_for(&analysis);
+                if let Some(m) = moments {
+                    sel.moments = m;
+                }
+                if let Some(n) = nodes {
+                    sel.nodes = n;
+                }
+                let mut doc =
+                    analysis
+                        .to_json_selected(&sel)
+                        .map_err(|message| FramesError::Scene {
+                            file: analysis.scene.file.clone(),
+                            line: 0,
+                            key: "--nodes".into(),
+                            message,
+                        })?;
                 if let (Some((lambda, _)), Some(obj)) = (valid, doc.as_object_mut()) {
                     obj.insert("plcp_valid_up_to_lambda".into(), lambda.into());
                     if let Some(c) = &analysis.time_stepping {
                         obj.insert("time_stepping".into(), c.to_json(&analysis));
                     }
                 }
-                out(&(serde_json::to_string_pretty(&doc).unwrap_or_default() + "\n"));
+                // written as it is serialised, not built as one string
+                let mut w = std::io::BufWriter::new(std::io::stdout().lock());
+                // pretty for small scenes, compact (about 40 % of the size) for large
+                let _ = if analysis.scene.frame.nodes.len() <= frames::report::SMALL_SCENE {
+                    serde_json::to_writer_pretty(&mut w, &doc)
+                } else {
+                    serde_json::to_writer(&mut w, &doc)
+                };
+                let _ = w.write_all(b"\n");
+                let _ = w.flush();
             } else {
                 out(&analysis.to_text());
                 if let Some((lambda, t)) = valid {

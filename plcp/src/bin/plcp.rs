@@ -153,6 +153,10 @@ fn solve<T: Scalar>(
     exact: bool,
     threads: Option<usize>,
 ) -> Result<String, InputError> {
+    let bytes = plcp::io::read_bytes(file).map_err(in_file(file))?;
+    if plcp::io::sparse_json::is_sparse_json(&bytes) && !exact && !certify {
+        return solve_sparse::<T>(&bytes, file, method, lambda_max, at);
+    }
     let mut problem = read_plcp::<T>(file).map_err(in_file(file))?;
     if lambda_max.is_some() {
         let lm = lambda_max_from_f64::<T>(lambda_max)?;
@@ -191,6 +195,43 @@ fn solve<T: Scalar>(
         Some(c) => append_fields(json, &format!("\"certificate\":{}", c.to_json())),
         None => json,
     })
+}
+
+/// The sparse input (`plcp::io::sparse_json`): the sparse LU basis, the file's
+/// warm basis, and segments kept only when `--at` asks for values (the output
+/// then has breakpoints and the end: memory linear in `nnz(M) + n + pivots`).
+fn solve_sparse<T: Scalar>(
+    bytes: &[u8],
+    file: &std::path::Path,
+    method: Method,
+    lambda_max: Option<f64>,
+    at: &[f64],
+) -> Result<String, InputError> {
+    let (mut problem, warm) =
+        plcp::io::sparse_json::parse_sparse::<T>(bytes, &file.display().to_string())
+            .map_err(in_file(file))?;
+    if lambda_max.is_some() {
+        let lm = lambda_max_from_f64::<T>(lambda_max)?;
+        let lambda0 = problem.lambda0();
+        problem = problem.with_range(lambda0, lm)?;
+    }
+    let mut settings = Settings::<T>::with_method(method);
+    settings.basis = plcp::BasisKind::Sparse;
+    settings.warm_basis = warm;
+    let keep = if at.is_empty() {
+        plcp::Keep::Nothing
+    } else {
+        plcp::Keep::All
+    };
+    let start = Instant::now();
+    let run = plcp::solve_observed(
+        &problem,
+        &settings,
+        |_: &plcp::Segment<T>, _: &plcp::Progress<'_, T>| plcp::Control::Continue,
+        keep,
+    )?;
+    let seconds = start.elapsed().as_secs_f64();
+    Ok(path_json(&problem, &run.path, at, seconds))
 }
 
 /// Adds `"key":value` fields (given as JSON text) to a JSON object's text.

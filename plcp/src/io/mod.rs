@@ -18,6 +18,7 @@
 #[cfg(feature = "json")]
 pub mod json;
 pub mod siconos;
+pub mod sparse_json;
 
 use crate::error::PlcpError;
 use crate::scalar::Scalar;

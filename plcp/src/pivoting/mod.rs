@@ -461,18 +461,23 @@ impl<'a, T: Scalar> Engine<'a, T> {
         // a segment starts with the driver at zero
         let start = self.point(Some((driver, T::zero())));
         let (dz, dw, du) = self.slopes(driver, col, rate);
-        rec.segments.push(Segment {
-            lambda_from: self.lambda,
-            lambda_to,
-            unbounded,
-            basis: self.segment_basis(driver),
-            z_from: start.z,
-            dz,
-            w_from: start.w,
-            dw,
-            u_from: start.u,
-            du,
-        });
+        crate::observe::record(
+            &mut rec.segments,
+            &rec.breakpoints,
+            self.pivots,
+            Segment {
+                lambda_from: self.lambda,
+                lambda_to,
+                unbounded,
+                basis: self.segment_basis(driver),
+                z_from: start.z,
+                dz,
+                w_from: start.w,
+                dw,
+                u_from: start.u,
+                du,
+            },
+        );
     }
 
     pub(crate) fn tie_tol_value(&self) -> T {

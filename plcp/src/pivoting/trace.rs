@@ -42,7 +42,7 @@ impl<'a, T: Scalar> Engine<'a, T> {
             return TraceEnd::Stalled("internal: trace must start with L nonbasic".into());
         }
         loop {
-            if self.pivots >= self.max_pivots {
+            if self.pivots >= self.max_pivots || crate::observe::stop_requested() {
                 return TraceEnd::PivotLimit;
             }
             // the entering column refined inside its solve, where the basis can

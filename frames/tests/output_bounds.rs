@@ -1,0 +1,129 @@
+//! The JSON report's bounded defaults: a large scene gets moment distributions
+//! and node series at a bounded, documented sample (and says so), a small one
+//! gets everything, and `OutputSelection` asks for more or for specific ones.
+
+use frames::report::{
+    sample_indices, MomentPick, NodePick, OutputSelection, DEFAULT_SAMPLES, SMALL_SCENE,
+};
+use frames::{Analysis, AnalysisOptions, Scene, SolveOptions};
+
+fn cantilever(elements: usize) -> Analysis {
+    let src = format!(
+        r#"
+title = "uniform cantilever"
+[[node]]
+id = "A"
+x = 0.0
+y = 0.0
+[[node]]
+id = "B"
+x = 1.0
+y = 0.0
+[[member]]
+id = "AB"
+from = "A"
+to = "B"
+plastic_moment = 1.0
+elements = {elements}
+mass_per_length = 1.0
+[[support]]
+node = "A"
+fix = ["x", "y", "rz"]
+[[load]]
+node = "B"
+fy = 1.0
+[history]
+kind = "ramp"
+rate = 1.0
+"#
+    );
+    let scene = Scene::from_toml(&src, "cantilever.toml").unwrap();
+    let options = AnalysisOptions {
+        solve: SolveOptions {
+            lambda_max: Some(12.0),
+            ..SolveOptions::default()
+        },
+        ..AnalysisOptions::default()
+    };
+    Analysis::run(scene, &options).unwrap()
+}
+
+fn count(doc: &serde_json::Value) -> (usize, usize, usize, usize) {
+    let intervals = doc["intervals"].as_array().unwrap();
+    let with_pieces = intervals
+        .iter()
+        .filter(|i| !i["pieces"].as_array().unwrap().is_empty())
+        .count();
+    let acc_nodes = intervals[0]["accelerations"].as_object().unwrap().len();
+    (
+        doc["moments_at_breakpoints"].as_array().unwrap().len(),
+        with_pieces,
+        acc_nodes,
+        doc["response"]["nodes"].as_object().unwrap().len(),
+    )
+}
+
+#[test]
+fn sampling_keeps_the_ends_and_the_count() {
+    assert_eq!(sample_indices(5, 20), vec![0, 1, 2, 3, 4]);
+    let s = sample_indices(1000, 20);
+    assert_eq!(s.len(), 20);
+    assert_eq!((s[0], s[19]), (0, 999));
+    assert!(s.windows(2).all(|w| w[0] < w[1]));
+    assert!(sample_indices(7, 0).is_empty());
+}
+
+#[test]
+fn a_large_scene_is_bounded_by_default_and_everything_on_request() {
+    let a = cantilever(SMALL_SCENE + 50);
+    let nodes = a.scene.frame.nodes.len();
+    assert!(nodes > SMALL_SCENE);
+    let bps = a.reading.breakpoints.len();
+    let doc = a.to_json();
+    let (diagrams, pieces, acc, series) = count(&doc);
+    assert!(diagrams <= DEFAULT_SAMPLES && diagrams >= 2, "{diagrams}");
+    assert!(pieces <= DEFAULT_SAMPLES, "{pieces}");
+    assert_eq!((acc, series), (DEFAULT_SAMPLES, DEFAULT_SAMPLES));
+    // every breakpoint's events, every interval's hinge sets: always
+    assert_eq!(doc["breakpoints"].as_array().unwrap().len(), bps);
+    assert_eq!(
+        doc["intervals"].as_array().unwrap().len(),
+        a.reading.intervals.len()
+    );
+    assert!(doc["output"]["moments"]
+        .as_str()
+        .unwrap()
+        .contains("sampled"));
+    // everything on request
+    let all = a.to_json_selected(&OutputSelection::all()).unwrap();
+    let (d_all, p_all, acc_all, s_all) = count(&all);
+    assert_eq!(d_all, a.response.moments_at_breakpoints.len());
+    assert!(d_all > diagrams && p_all > pieces);
+    assert_eq!((acc_all, s_all), (nodes, nodes));
+    assert!(all["output"]["moments"].as_str().unwrap().contains("all"));
+    // particular values and nodes
+    let some = OutputSelection {
+        moments: MomentPick::At(vec![3.0, 5.0]),
+        nodes: NodePick::Ids(vec!["B".into(), "A".into()]),
+    };
+    let doc = a.to_json_selected(&some).unwrap();
+    let (d, _, acc, series) = count(&doc);
+    assert!((1..=2).contains(&d));
+    assert_eq!((acc, series), (2, 2));
+    assert!(doc["response"]["nodes"]["B"].is_object());
+    let bad = OutputSelection {
+        moments: MomentPick::All,
+        nodes: NodePick::Ids(vec!["nowhere".into()]),
+    };
+    assert!(a.to_json_selected(&bad).unwrap_err().contains("nowhere"));
+}
+
+#[test]
+fn a_small_scene_reports_everything() {
+    let a = cantilever(20);
+    let doc = a.to_json();
+    let (d, _, acc, series) = count(&doc);
+    assert_eq!(d, a.response.moments_at_breakpoints.len());
+    let nodes = a.scene.frame.nodes.len();
+    assert_eq!((acc, series), (nodes, nodes));
+}

@@ -1,0 +1,237 @@
+//! A sparse JSON input for large problems: `M` as triplets or in compressed
+//! sparse columns, read in memory linear in `nnz(M) + n`.
+//!
+//! ```json
+//! {"M_sparse": {"order": 3, "triplets": [[0, 0, 4], [0, 1, -1], [1, 0, -1], [1, 1, 4], [2, 2, 4]]},
+//!  "q": [-1, -1, -1], "d": [0.1, 0.1, 0.1], "lambda_max": 2, "free": 0, "warm_basis": "z"}
+//! ```
+//!
+//! * `M_sparse.order`: the order `p + n` of `M`;
+//! * `M_sparse.triplets`: `[row, column, value]` entries (0-based; a repeated
+//!   position is summed, explicit zeros are dropped), **or**
+//!   `M_sparse.csc`: `{"col_ptr": [...], "row_idx": [...], "values": [...]}`
+//!   (compressed sparse columns: column `j`'s entries are
+//!   `col_ptr[j]..col_ptr[j + 1]`);
+//! * `q`, `d`, `lambda_max`, `free`, `lambda0`, `comment`: as in [`super::json`];
+//! * `warm_basis` (optional): the start basis, `"z"` (every `z_i`, and every
+//!   `u_j`), `"w"` (every `w_i`, and every `u_j`), or a list of names
+//!   (`"u0"`, `"z3"`, `"w7"`, one per row); see [`crate::Settings::warm_basis`].
+//!
+//! Unknown keys, out-of-range indices, non-finite values and a malformed
+//! `col_ptr` are errors that name the entry. No dense `M` is ever built, so
+//! the limit [`super::MAX_ORDER`] of the dense readers does not apply.
+//!
+//! ```
+//! let text = r#"{"M_sparse": {"order": 2, "triplets": [[0, 0, 2], [1, 1, 2], [0, 1, 1], [1, 0, 1]]},
+//!                "q": [1, 1], "d": [-1, -0.5], "warm_basis": "w"}"#;
+//! let (p, warm) = plcp::io::sparse_json::parse_sparse::<f64>(text.as_bytes(), "ex.json").unwrap();
+//! assert!(p.is_sparse());
+//! assert_eq!(warm.unwrap(), vec![plcp::Var::W(0), plcp::Var::W(1)]);
+//! ```
+
+use super::{convert, utf8_in};
+use crate::error::PlcpError;
+use crate::matrix::Csc;
+use crate::path::Var;
+use crate::problem::Plcp;
+use crate::scalar::Scalar;
+use faer::Col;
+use serde::Deserialize;
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawCsc {
+    col_ptr: Vec<usize>,
+    row_idx: Vec<usize>,
+    values: Vec<f64>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawSparseM {
+    order: usize,
+    #[serde(default)]
+    triplets: Option<Vec<(usize, usize, f64)>>,
+    #[serde(default)]
+    csc: Option<RawCsc>,
+}
+
+#[derive(Deserialize)]
+#[serde(untagged)]
+enum RawWarm {
+    All(String),
+    List(Vec<String>),
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawSparse {
+    #[serde(rename = "M_sparse")]
+    m: RawSparseM,
+    q: Vec<f64>,
+    d: Vec<f64>,
+    #[serde(default)]
+    lambda_max: Option<serde_json::Value>,
+    #[serde(default)]
+    free: usize,
+    #[serde(default)]
+    lambda0: Option<f64>,
+    #[serde(default)]
+    warm_basis: Option<RawWarm>,
+    #[serde(default, rename = "comment")]
+    _comment: Option<serde::de::IgnoredAny>,
+}
+
+fn invalid(file: &str, what: impl Into<String>, why: impl Into<String>) -> PlcpError {
+    PlcpError::Invalid {
+        what: format!("{file}: {}", what.into()),
+        why: why.into(),
+    }
+}
+
+/// True when the JSON text is the sparse format (it has an `M_sparse` key).
+pub fn is_sparse_json(bytes: &[u8]) -> bool {
+    bytes.windows(10).any(|w| w == b"\"M_sparse\"")
+}
+
+/// Parses the sparse format: the problem and the warm basis, if one is given.
+pub fn parse_sparse<T: Scalar>(
+    bytes: &[u8],
+    file: &str,
+) -> Result<(Plcp<T>, Option<Vec<Var>>), PlcpError> {
+    let text = utf8_in(bytes, file)?;
+    let raw: RawSparse = serde_json::from_str(text).map_err(|e| PlcpError::Parse {
+        file: file.to_string(),
+        line: e.line().max(1),
+        column: e.column().max(1),
+        message: e.to_string(),
+    })?;
+    let dim = raw.m.order;
+    let mut triplets: Vec<(usize, usize, T)> = Vec::new();
+    let mut push = |i: usize, j: usize, v: f64, k: usize| -> Result<(), PlcpError> {
+        if i >= dim || j >= dim {
+            return Err(invalid(
+                file,
+                format!("M_sparse entry {k}"),
+                format!("position ({i}, {j}) outside the order {dim}"),
+            ));
+        }
+        let v = convert::<T>("M", &format!("({i}, {j})"), v)?;
+        if v != T::zero() {
+            triplets.push((i, j, v));
+        }
+        Ok(())
+    };
+    match (&raw.m.triplets, &raw.m.csc) {
+        (Some(t), None) => {
+            for (k, &(i, j, v)) in t.iter().enumerate() {
+                push(i, j, v, k)?;
+            }
+        }
+        (None, Some(c)) => {
+            if c.col_ptr.len() != dim + 1
+                || c.col_ptr[0] != 0
+                || c.col_ptr.windows(2).any(|w| w[0] > w[1])
+                || c.col_ptr[dim] != c.row_idx.len()
+                || c.row_idx.len() != c.values.len()
+            {
+                return Err(invalid(
+                    file,
+                    "M_sparse.csc",
+                    format!(
+                        "col_ptr must have order + 1 = {} nondecreasing entries from 0 to len(row_idx) = {}, and values as many as row_idx ({})",
+                        dim + 1,
+                        c.row_idx.len(),
+                        c.values.len()
+                    ),
+                ));
+            }
+            for j in 0..dim {
+                for k in c.col_ptr[j]..c.col_ptr[j + 1] {
+                    push(c.row_idx[k], j, c.values[k], k)?;
+                }
+            }
+        }
+        _ => {
+            return Err(invalid(
+                file,
+                "M_sparse",
+                "give exactly one of \"triplets\" and \"csc\"",
+            ))
+        }
+    }
+    let m = Csc::try_from_triplets(dim, dim, &triplets)?;
+    let col = |v: &[f64], name: &str| -> Result<Col<T>, PlcpError> {
+        let mut c = Col::zeros(v.len());
+        for (i, &x) in v.iter().enumerate() {
+            c[i] = convert::<T>(name, &format!("[{i}]"), x)?;
+        }
+        Ok(c)
+    };
+    let q = col(&raw.q, "q")?;
+    let d = col(&raw.d, "d")?;
+    let p = raw.free;
+    let mut problem = Plcp::mixed_sparse(m, q.as_ref(), d.as_ref(), p)?;
+    let lambda_max = match &raw.lambda_max {
+        None | Some(serde_json::Value::Null) => None,
+        Some(serde_json::Value::String(s)) if s == "inf" => None,
+        Some(serde_json::Value::Number(x)) => x.as_f64().map(T::from_f64),
+        Some(other) => {
+            return Err(invalid(
+                file,
+                "lambda_max",
+                format!("a number, null or \"inf\", got {other}"),
+            ))
+        }
+    };
+    let lambda0 = T::from_f64(raw.lambda0.unwrap_or(0.0));
+    problem = problem.with_range(lambda0, lambda_max)?;
+    let n = dim.saturating_sub(p);
+    let warm = match raw.warm_basis {
+        None => None,
+        Some(RawWarm::All(s)) => {
+            let pair: fn(usize) -> Var = match s.as_str() {
+                "z" => Var::Z,
+                "w" => Var::W,
+                _ => {
+                    return Err(invalid(
+                        file,
+                        "warm_basis",
+                        format!("\"z\", \"w\" or a list of names, got \"{s}\""),
+                    ))
+                }
+            };
+            Some((0..p).map(Var::U).chain((0..n).map(pair)).collect())
+        }
+        Some(RawWarm::List(names)) => {
+            let mut b = Vec::with_capacity(names.len());
+            for (k, s) in names.iter().enumerate() {
+                let bad = || {
+                    invalid(
+                        file,
+                        format!("warm_basis[{k}]"),
+                        format!("\"{s}\" is not u<j>, z<i> or w<i> in range"),
+                    )
+                };
+                let (kind, idx) = s.split_at(1.min(s.len()));
+                let i: usize = idx.parse().map_err(|_| bad())?;
+                b.push(match kind {
+                    "u" if i < p => Var::U(i),
+                    "z" if i < n => Var::Z(i),
+                    "w" if i < n => Var::W(i),
+                    _ => return Err(bad()),
+                });
+            }
+            Some(b)
+        }
+    };
+    Ok((problem, warm))
+}
+
+/// Reads a sparse problem file ([`parse_sparse`]).
+pub fn read_sparse<T: Scalar>(
+    path: &std::path::Path,
+) -> Result<(Plcp<T>, Option<Vec<Var>>), PlcpError> {
+    let bytes = super::read_bytes(path)?;
+    parse_sparse(&bytes, &path.display().to_string())
+}
