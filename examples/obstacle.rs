@@ -18,7 +18,7 @@
 
 use faer::Col;
 use plcp::matrix::Csc;
-use plcp::observe::{solve_observed, Control, Keep, Progress};
+use plcp::{solve_observed, Control, Keep, Progress};
 use plcp::{BasisKind, Method, Plcp, Segment, Settings, Var};
 use std::cell::RefCell;
 use std::rc::Rc;

@@ -89,7 +89,7 @@ pub use error::PlcpError;
 pub use escalate::Escalation;
 pub use exact::{certify, Certificate};
 pub use lemke::{solve_lcp, LcpSolution};
-pub use observe::{solve_observed, CompactPath, Control, Keep, Observer, Progress};
+pub use observe::{solve_observed, CompactPath, Control, Keep, Observed, Observer, Progress};
 pub use path::{Breakpoint, FreeBlockInfo, Info, Path, Point, Ray, Residual, Segment, Status, Var};
 pub use problem::{Lcp, Plcp};
 pub use scalar::{infinity, Precision, Scalar};

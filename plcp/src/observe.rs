@@ -42,7 +42,7 @@
 //!
 //! ```
 //! use faer::{col, mat};
-//! use plcp::observe::{solve_observed, Control, Keep, Progress};
+//! use plcp::{solve_observed, Control, Keep, Progress};
 //! use plcp::{Plcp, Segment, Settings, Status};
 //!
 //! let m = mat![[2.0, 1.0], [1.0, 2.0]];

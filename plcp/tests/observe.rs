@@ -3,7 +3,7 @@
 //! compact path evaluates like the full one.
 
 use faer::{Col, Mat};
-use plcp::observe::{solve_observed, Control, Keep, Progress};
+use plcp::{solve_observed, Control, Keep, Progress};
 use plcp::{Method, Path, Plcp, Segment, Settings, Status};
 use std::cell::RefCell;
 use std::rc::Rc;
