@@ -245,7 +245,8 @@ impl Polyhedron {
         };
         let lon = |i: usize| -> (f64, f64) {
             let i = i % k;
-            if i % q == 0 {
+            let off_axis = i % q;
+            if off_axis == 0 {
                 // exact on the axes
                 [(1.0, 0.0), (0.0, 1.0), (-1.0, 0.0), (0.0, -1.0)][i / q]
             } else {
