@@ -186,6 +186,151 @@ impl Polygon {
     }
 }
 
+/// One facet of a [`Polyhedron`]: `n . (m2, m3, t) <= offset`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Facet3 {
+    /// Unit outward normal `(n_m2, n_m3, n_t)`.
+    pub normal: [f64; 3],
+    /// Offset `c > 0` (distance of the facet's plane from the origin).
+    pub offset: f64,
+}
+
+/// An inscribed polyhedron of the pipe's bending-torsion surface
+/// `m2^2 + m3^2 + t^2 <= 1` (`m2 = M2/Mp`, `m3 = M3/Mp`, `t = T/Tp`), for the
+/// general space model (not assembled yet: see `docs/space-frames.md`).
+///
+/// **How the facets are built.** A latitude-longitude grid with the polar
+/// axis along `t` (the bending is isotropic, so rotating `(m2, m3)` by a
+/// multiple of `2 pi / k` maps the grid to itself): `k` longitudes at the
+/// angles `2 pi i / k` from the `m2` axis, `k` a multiple of 4 (the `m2` and
+/// `m3` axes are meridians), and the latitudes `2 pi j / k`, `|j| < k / 4`,
+/// of the polygon of `k` facets (the equator among them), with the two poles.
+/// Every vertex is on the sphere. The facets are the quadrilaterals between
+/// neighbouring latitudes and longitudes (isosceles trapezoids: planar) and
+/// the triangles at the poles: `k (k/2 - 2) + 2 k = k^2 / 2` facets. The
+/// meridians through the `m2` and `m3` axes are rings of edges, so the
+/// cross-sections `m2 = 0` and `m3 = 0` are exactly the [`Polygon`] of `k`
+/// facets of [`Curve::BendingTorsion`], and pure bending about any axis at a
+/// longitude (and pure torsion) is a capacity exactly.
+///
+/// **Size.** Each facet is one yield mode of a section: `k^2 / 2` per section
+/// against `k` for the grillage polygon, so `p = e k^2` modes for `e`
+/// elements (`k = 16`: 128 per section), while the free block (coordinates
+/// and member forces) does not depend on `k`. A pivot costs about the PLCP's
+/// dimension, so the time of a path grows with `k^2` per pivot times the
+/// number of facets a flowing section's stress crosses (growing with `k`).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Polyhedron {
+    facets: Vec<Facet3>,
+    planarity: f64,
+}
+
+impl Polyhedron {
+    /// The polyhedron of `k` longitudes (`k` a multiple of 4 from 4 to 256).
+    pub fn new(k: usize) -> Result<Polyhedron, String> {
+        // the same rule as the polygons
+        Polygon::new(Curve::BendingTorsion, k)?;
+        let q = k / 4;
+        let lat = |j: isize| -> (f64, f64) {
+            // exact at the equator and the poles
+            match j {
+                0 => (1.0, 0.0),
+                j if j == q as isize => (0.0, 1.0),
+                j if j == -(q as isize) => (0.0, -1.0),
+                j => {
+                    let a = 2.0 * PI * j as f64 / k as f64;
+                    (a.cos(), a.sin())
+                }
+            }
+        };
+        let lon = |i: usize| -> (f64, f64) {
+            let i = i % k;
+            let off_axis = i % q;
+            if off_axis == 0 {
+                // exact on the axes
+                [(1.0, 0.0), (0.0, 1.0), (-1.0, 0.0), (0.0, -1.0)][i / q]
+            } else {
+                let a = 2.0 * PI * i as f64 / k as f64;
+                (a.cos(), a.sin())
+            }
+        };
+        let vertex = |i: usize, j: isize| -> [f64; 3] {
+            let (cl, sl) = lat(j);
+            let (co, so) = lon(i);
+            [cl * co, cl * so, sl]
+        };
+        let mut facets = Vec::with_capacity(k * k / 2);
+        let mut planarity = 0.0f64;
+        let mut push = |pts: &[[f64; 3]]| {
+            // outward normal from the first three points, averaged offset
+            let (a, b, c) = (pts[0], pts[1], pts[2]);
+            let u = [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
+            let v = [c[0] - a[0], c[1] - a[1], c[2] - a[2]];
+            let mut n = [
+                u[1] * v[2] - u[2] * v[1],
+                u[2] * v[0] - u[0] * v[2],
+                u[0] * v[1] - u[1] * v[0],
+            ];
+            let len = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
+            n = n.map(|x| x / len);
+            let centre: [f64; 3] = [0, 1, 2].map(|d| pts.iter().map(|p| p[d]).sum::<f64>());
+            if n[0] * centre[0] + n[1] * centre[1] + n[2] * centre[2] < 0.0 {
+                n = n.map(|x| -x);
+            }
+            let offset = pts
+                .iter()
+                .map(|p| n[0] * p[0] + n[1] * p[1] + n[2] * p[2])
+                .sum::<f64>()
+                / pts.len() as f64;
+            // planar: every vertex on the facet's plane (to rounding)
+            for p in pts {
+                let off = (n[0] * p[0] + n[1] * p[1] + n[2] * p[2] - offset).abs();
+                planarity = planarity.max(off);
+            }
+            facets.push(Facet3 { normal: n, offset });
+        };
+        let q = q as isize;
+        for i in 0..k {
+            for j in -q..q {
+                let (a, b) = (vertex(i, j), vertex(i + 1, j));
+                let (c, d) = (vertex(i + 1, j + 1), vertex(i, j + 1));
+                if j == -q {
+                    push(&[a, c, d]); // south cap: a = b is the pole
+                } else if j + 1 == q {
+                    push(&[a, b, c]); // north cap: c = d is the pole
+                } else {
+                    push(&[a, b, c, d]);
+                }
+            }
+        }
+        Ok(Polyhedron { facets, planarity })
+    }
+
+    /// The largest distance of a vertex from its facet's plane (rounding
+    /// only: the quadrilaterals are isosceles trapezoids).
+    pub fn planarity(&self) -> f64 {
+        self.planarity
+    }
+
+    /// The facets.
+    pub fn facets(&self) -> &[Facet3] {
+        &self.facets
+    }
+
+    /// The largest `s` with `s u` inside the polyhedron (the load factor of a
+    /// section whose normalised forces are `u = (m2, m3, t)` per unit load);
+    /// the smooth surface's is `1 / |u|`, a bound from above.
+    pub fn load_factor(&self, u: [f64; 3]) -> f64 {
+        self.facets
+            .iter()
+            .filter_map(|f| {
+                let p = f.normal[0] * u[0] + f.normal[1] * u[1] + f.normal[2] * u[2];
+                (p > 0.0).then(|| f.offset / p)
+            })
+            .fold(f64::INFINITY, f64::min)
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -239,5 +384,51 @@ mod tests {
         }
         assert!(Polygon::new(Curve::BendingAxial, 0).is_err());
         assert!(Polygon::new(Curve::BendingAxial, 10).is_err());
+    }
+
+    #[test]
+    fn polyhedron_is_inscribed_with_planar_facets_and_polygon_sections() {
+        for k in [4, 8, 16, 32] {
+            let p = Polyhedron::new(k).unwrap();
+            assert_eq!(p.facets().len(), k * k / 2, "k = {k}");
+            assert!(p.planarity() < 1e-15, "k = {k}: {}", p.planarity());
+            // pure bending about the grid's axes, and pure torsion: capacities exactly
+            for u in [
+                [1.0, 0.0, 0.0],
+                [0.0, 1.0, 0.0],
+                [0.0, 0.0, 1.0],
+                [0.0, -1.0, 0.0],
+            ] {
+                assert!((p.load_factor(u) - 1.0).abs() < 1e-14, "k = {k}: {u:?}");
+            }
+            // the cross-section m2 = 0 is the polygon of k facets
+            let poly = Polygon::new(Curve::BendingTorsion, k).unwrap();
+            for a in 0..97 {
+                let t = a as f64 * 0.0654;
+                let (m, f) = (t.cos(), t.sin());
+                let want = poly.load_factor(m, f);
+                for u in [[0.0, m, f], [m, 0.0, f]] {
+                    let got = p.load_factor(u);
+                    assert!(
+                        (got - want).abs() < 1e-12 * want,
+                        "k = {k}, {u:?}: {got} vs {want}"
+                    );
+                }
+            }
+            // inscribed: never outside the sphere, and the gap closes as k doubles
+            let mut worst = 0.0f64;
+            for a in 0..40 {
+                let (th, ph) = (a as f64 * 0.7137, (a as f64 * 0.3911).sin() * 1.5);
+                let u = [ph.cos() * th.cos(), ph.cos() * th.sin(), ph.sin()];
+                let s = p.load_factor(u);
+                assert!(s <= 1.0 + 1e-14, "k = {k}: outside the sphere along {u:?}");
+                worst = worst.max(1.0 - s);
+            }
+            // the facets' farthest point from the sphere: at most 1 - cos(2 pi / k)
+            assert!(
+                worst <= 1.0 - (2.0 * PI / k as f64).cos(),
+                "k = {k}: {worst}"
+            );
+        }
     }
 }

@@ -397,3 +397,69 @@ fn time_stepping_follows_the_path_on_a_space_scene() {
     assert!(errors[1] < errors[0], "{errors:?}");
     assert!(errors[1] < 1e-2, "{errors:?}");
 }
+
+/// Static collapse of a statically determinate space cantilever (legs AB
+/// along x and BC along y, clamped at A, a tip force at C with components
+/// in and out of the plane) by limit analysis with the yield polyhedron:
+/// the section forces are `lambda` times known vectors, so the collapse load
+/// is the least load factor over the sections. Lower bounds of the smooth
+/// surface's `1 / |u|`, rising to it as `k` doubles. (The general space
+/// model's PLCP is not assembled yet: this checks the polyhedron alone.)
+#[test]
+fn polyhedron_collapse_load_rises_to_the_smooth_surfaces() {
+    use frames::yield_surface::Polyhedron;
+    let tp = 0.906_899_682_117_108_9;
+    let force = [0.3, 0.0, -1.0];
+    let cross = |a: [f64; 3], b: [f64; 3]| {
+        [
+            a[1] * b[2] - a[2] * b[1],
+            a[2] * b[0] - a[0] * b[2],
+            a[0] * b[1] - a[1] * b[0],
+        ]
+    };
+    let dot = |a: [f64; 3], b: [f64; 3]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+    let c = [1.0, 1.0, 0.0];
+    // (section point, member axis e1, e2); e3 = e1 x e2
+    let sections = [
+        ([0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]),
+        ([1.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]),
+        ([1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [-1.0, 0.0, 0.0]),
+    ];
+    let u: Vec<[f64; 3]> = sections
+        .iter()
+        .map(|&(p, e1, e2)| {
+            let arm = [c[0] - p[0], c[1] - p[1], c[2] - p[2]];
+            let m = cross(arm, force);
+            let e3 = cross(e1, e2);
+            [dot(m, e2), dot(m, e3), dot(m, e1) / tp]
+        })
+        .collect();
+    let smooth = u
+        .iter()
+        .map(|v| 1.0 / dot(*v, *v).sqrt())
+        .fold(f64::INFINITY, f64::min);
+    let mut last = 0.0;
+    for k in [4, 8, 16, 32, 64] {
+        let p = Polyhedron::new(k).unwrap();
+        let lambda = u
+            .iter()
+            .map(|v| p.load_factor(*v))
+            .fold(f64::INFINITY, f64::min);
+        eprintln!(
+            "k = {k:>3}: {:>5} facets per section, collapse load {lambda:.6} (smooth {smooth:.6}, {:.2e} below)",
+            p.facets().len(),
+            (smooth - lambda) / smooth
+        );
+        assert!(
+            lambda <= smooth * (1.0 + 1e-14),
+            "k = {k}: above the smooth surface's"
+        );
+        assert!(lambda >= last * (1.0 - 1e-14), "k = {k}: not rising");
+        assert!(
+            (smooth - lambda) / smooth <= 1.0 - (2.0 * std::f64::consts::PI / k as f64).cos(),
+            "k = {k}: {lambda} vs {smooth}"
+        );
+        last = lambda;
+    }
+    assert!((smooth - last) / smooth < 5e-3, "{last} vs {smooth}");
+}
