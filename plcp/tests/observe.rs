@@ -106,8 +106,10 @@ fn problems() -> Vec<(Plcp<f64>, Settings<f64>)> {
     let mut out = Vec::new();
     for seed in 1..5 {
         out.push((monotone(12, seed), Settings::default()));
-        let mut no_scaling = Settings::default();
-        no_scaling.scaling = false;
+        let no_scaling = Settings {
+            scaling: false,
+            ..Settings::default()
+        };
         out.push((monotone(9, seed + 10), no_scaling));
         let wolfe = Settings {
             method: Method::Wolfe,

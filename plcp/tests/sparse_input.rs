@@ -12,7 +12,9 @@ const BIN: &str = env!("CARGO_BIN_EXE_plcp");
 
 /// The 5-point Laplacian on an `nx x nx` grid, a bowl obstacle `psi < 0`:
 /// `(triplets, q, d)` of `w = A psi + L h^2 1 + A z`.
-fn obstacle(nx: usize) -> (Vec<(usize, usize, f64)>, Vec<f64>, Vec<f64>) {
+type Triplets = Vec<(usize, usize, f64)>;
+
+fn obstacle(nx: usize) -> (Triplets, Vec<f64>, Vec<f64>) {
     let n = nx * nx;
     let h = 1.0 / (nx as f64 + 1.0);
     let id = |i: usize, j: usize| i * nx + j;
@@ -127,9 +129,11 @@ fn triplets_and_csc_give_the_dense_path() {
             warm.as_deref(),
             Some(&(0..n).map(Var::Z).collect::<Vec<_>>()[..])
         );
-        let mut s = Settings::default();
-        s.basis = plcp::BasisKind::Sparse;
-        s.warm_basis = warm;
+        let s = Settings {
+            basis: plcp::BasisKind::Sparse,
+            warm_basis: warm,
+            ..Settings::default()
+        };
         let path = plcp::solve(&p, &s).unwrap();
         assert!(path.info.warm_start);
         let lib: Vec<f64> = path.breakpoints.iter().map(|b| b.lambda).collect();
