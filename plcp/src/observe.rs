@@ -479,7 +479,7 @@ impl<T: Scalar> CompactPath<T> {
             .push((seg.lambda_from, seg.lambda_to, seg.unbounded));
         let full = k == 0
             || is_last
-            || (every > 0 && k.is_multiple_of(every))
+            || (every > 0 && k % every == 0)
             || seg.basis.len() != last.len();
         if !full {
             for (i, (a, b)) in last.iter().zip(&seg.basis).enumerate() {
