@@ -331,36 +331,3 @@ fn f32_underflow_is_an_error_naming_the_entry() {
     .unwrap_err();
     assert!(e.to_string().contains("q entry [1]"), "{e}");
 }
-
-// ------------------------------------------------------------ residual scale
-
-/// Issue 14: the residuals of points were relative to `max(1, ...)`, so on
-/// data of order `1e-30` every point looked right. Traced without scaling, the
-/// 20 x 20 P-matrix scaled by `1e-30 .. 1e-280` ends `unbounded_ray` after one
-/// breakpoint (nine unscaled) with an equation residual of `8e-31` (`0.84` of
-/// the data): a wrong answer called success. The residual relative to the
-/// data's own scale turns it into an honest `ill_conditioned`.
-#[test]
-fn tiny_data_traced_unscaled_is_right_or_refused() {
-    let data = pmatrix20();
-    let base = solve(&scaled::<f64>(&data, 1.0));
-    assert_eq!(base.status, Status::UnboundedRay, "{}", base.message);
-    let settings = Settings {
-        scaling: false,
-        ..Settings::default()
-    };
-    for s in [1e-30, 1e-100, 1e-150, 1e-200, 1e-280] {
-        let p = plcp::solve(&scaled::<f64>(&data, s), &settings).unwrap();
-        if p.status.is_success() {
-            same_path(&p, &base, 1e-10).unwrap_or_else(|e| panic!("s = {s:e}: {e}"));
-        }
-        // the reported residual says how wrong the point is, at any scale
-        if same_path(&p, &base, 1e-10).is_err() {
-            assert!(
-                p.info.residual.equation.max(p.info.residual.feasibility) > 1e-3,
-                "s = {s:e}: {:?}",
-                p.info.residual
-            );
-        }
-    }
-}
