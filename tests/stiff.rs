@@ -9,6 +9,7 @@ mod stiff_core;
 #[path = "../examples/common/stiff_random.rs"]
 mod stiff_random;
 
+use plcp::Scalar;
 use rand::SeedableRng;
 
 fn check(cases: &[stiff_core::Case]) {
@@ -64,4 +65,65 @@ fn breakpoint_distance_is_order_insensitive() {
     );
     assert!(stiff_core::breakpoint_error(&[1.0], &[1.0, 3.0], f64::INFINITY) > 0.5);
     assert_eq!(stiff_core::breakpoint_error(&[1.0], &[1.0, 3.0], 2.0), 0.0);
+}
+
+/// Issue 14: the random case "huge #9" (n = 5, the draws of the test above)
+/// traced in exact arithmetic. Its lexicographic rule read only part of
+/// `B^-1` and cycled on the turning path to the pivot limit; the path must
+/// end as fx128's does, with the same breakpoints, and fx128's path must
+/// be certified.
+#[test]
+fn huge_9_traced_exactly_agrees_with_fx128() {
+    let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(20261123);
+    let families = stiff_random::FAMILIES;
+    let case = (0..=9)
+        .map(|k| stiff_random::draw(&mut rng, families[k % families.len()], k))
+        .last()
+        .expect("ten cases");
+    assert!(case.name.starts_with("huge #9"), "{}", case.name);
+    let stiff_core::Problem::Plcp { m, q, d, .. } = &case.problem else {
+        panic!("a PLCP")
+    };
+    let n = q.len();
+    let m = faer::Mat::<f64>::from_fn(n, n, |i, j| m[i][j]);
+    let q = faer::Col::<f64>::from_fn(n, |i| q[i]);
+    let d = faer::Col::<f64>::from_fn(n, |i| d[i]);
+    let p64 = plcp::Plcp::new(m.as_ref(), q.as_ref(), d.as_ref()).unwrap();
+    let settings = plcp::Settings::<f64>::default();
+    let exact = plcp::exact::trace(&p64, &settings).unwrap();
+    let p128: plcp::Plcp<faer::fx128> = p64.cast();
+    let path128 = plcp::solve(&p128, &plcp::Settings::default()).unwrap();
+    // the exact path is a closed loop through L0 (12 breakpoints round,
+    // L in [-1.766, 0.273]): found and said, never a pivot limit or success
+    assert_eq!(
+        exact.path.status,
+        plcp::Status::SecondaryRay,
+        "{}",
+        exact.path.message
+    );
+    assert!(
+        exact.path.message.contains("closed loop"),
+        "{}",
+        exact.path.message
+    );
+    assert!(exact.path.info.pivots < 30, "{}", exact.path.info.pivots);
+    // fx128 agrees on the breakpoints it has before it stops, and claims no
+    // success (its fourth segment is already off: the exact certificate
+    // rejects it)
+    assert!(!path128.status.is_success(), "{}", path128.message);
+    let agree = path128
+        .breakpoints
+        .iter()
+        .zip(&exact.breakpoints)
+        .take_while(|(a, b)| {
+            let e = plcp::exact::rational_to_f64(b);
+            (a.lambda.to_f64() - e).abs() <= 1e-12 * e.abs().max(1.0)
+        })
+        .count();
+    assert!(agree >= 3, "fx128 and exact agree on {agree} breakpoints");
+    // the exact path, rounded, is certified; fx128's is not past the agreement
+    let cert = plcp::certify(&p64, &exact.path);
+    assert!(cert.certified(), "{}", cert.summary());
+    let cert = plcp::certify(&p128, &path128);
+    assert!(!cert.certified() || agree == path128.breakpoints.len());
 }

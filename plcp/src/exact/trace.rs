@@ -7,8 +7,15 @@
 //! If `q + L0 d` is not nonnegative, the LCP at `L0` is first solved by
 //! Lemke's method with an artificial `z0` and the covering vector of ones in
 //! the (power-of-two scaled) rows. Ratio ties are broken by the lexicographic
-//! rule on the rows of `B^-1` (its `w` columns), exactly, so that degenerate
-//! steps never cycle; ties go to `z0` leaving and to `L_max`. Every basis is
+//! rule on the rows of `B^-1` (its `w` columns: the whole of `B^-1` when there
+//! are no free variables, since the `w` block of the tableau starts as the
+//! identity), exactly, so that degenerate steps never cycle (with free
+//! variables, whose columns of `B^-1` are not stored, then the least basic
+//! variable); ties go to `z0` leaving and to `L_max`. Every state (basis,
+//! entering column) is remembered: one seen again would repeat forever and is
+//! reported, a closed loop of the path through `L0` (random case "huge #9" of
+//! `tests/stiff.rs`: `M` monotone and singular, 12 breakpoints round) as
+//! `secondary_ray`, a degenerate cycle as `pivot_limit`. Every basis is
 //! complementary with at most one pair's driver outside, as in the float
 //! engine, and the path it returns has the same shape.
 //!
@@ -187,6 +194,30 @@ struct Run {
     driver: Option<usize>,
 }
 
+/// The bases already left, with the entering column: the exact method is
+/// deterministic, so one seen again repeats forever (issue 14: random case
+/// "huge #9", whose path is a closed loop through `L0`).
+#[derive(Default)]
+struct Visits {
+    /// (sorted basis, entering column) -> number of breakpoints then.
+    seen: std::collections::HashMap<(Vec<usize>, usize), usize>,
+}
+
+impl Visits {
+    /// Records the state; `Some(k)`: it was seen when there were `k` breakpoints.
+    fn visit(&mut self, t: &Tableau, entering: usize, breakpoints: usize) -> Option<usize> {
+        let mut b = t.basis.clone();
+        b.sort_unstable();
+        match self.seen.entry((b, entering)) {
+            std::collections::hash_map::Entry::Occupied(e) => Some(*e.get()),
+            std::collections::hash_map::Entry::Vacant(e) => {
+                e.insert(breakpoints);
+                None
+            }
+        }
+    }
+}
+
 /// `a/b` compared with `c/d` for `b, d > 0`.
 fn cmp_frac(a: &BigInt, b: &BigInt, c: &BigInt, d: &BigInt) -> Ordering {
     (a * d).cmp(&(c * b))
@@ -255,7 +286,9 @@ impl Run {
                 return o;
             }
         }
-        i.cmp(&j)
+        // (only with free rows, whose columns of B^-1 are not stored) the
+        // least basic variable: a fixed order; a cycle is caught by `Visits`
+        t.basis[i].cmp(&t.basis[j])
     }
 
     fn col(t: &Tableau, c: usize) -> Vec<BigInt> {
@@ -294,6 +327,7 @@ impl Run {
         t.pivot(r, z0);
         self.pivots += 1;
         self.start_pivots += 1;
+        let mut visits = Visits::default();
         loop {
             if self.pivots >= self.max_pivots {
                 return Some((
@@ -302,6 +336,16 @@ impl Run {
                 ));
             }
             let c = Self::complement_col(t, leaving).expect("a z or w left");
+            if visits.visit(t, c, 0).is_some() {
+                return Some((
+                    Status::PivotLimit,
+                    format!(
+                        "the start phase at L0 = {} returned to a basis it had left (a cycle of degenerate pivots, which the lexicographic rule on the stored columns of B^-1 did not break): stopped after {} pivots",
+                        super::short(&self.l0),
+                        self.start_pivots
+                    ),
+                ));
+            }
             let v = self.values_at_l0(t);
             let col = Self::col(t, c);
             let cand: Vec<usize> = (0..t.basis.len())
@@ -353,12 +397,16 @@ impl Run {
         t.active[lam] = true;
         let den_r = BigRational::from_integer(den.clone());
         let mut entering = lam;
+        let mut visits = Visits::default();
         loop {
             if self.pivots >= self.max_pivots {
                 return (
                     Status::PivotLimit,
                     format!("pivot limit {} reached", self.max_pivots),
                 );
+            }
+            if let Some(k) = visits.visit(t, entering, self.breakpoints.len()) {
+                return self.closed(k);
             }
             let s = BigInt::from(t.sign());
             let absdet = t.det.abs();
@@ -468,6 +516,40 @@ impl Run {
                 }
             };
         }
+    }
+
+    /// The path came back to the state it had after `k` breakpoints: exact
+    /// pivoting is deterministic, so it would repeat forever. A loop along
+    /// which `L` moves is a closed curve of the path (possible when `M` is
+    /// not a P-matrix: the solution set at one `L` is not a point): it passes
+    /// through `L0` and never leaves `[min, max]` of its breakpoints, so the
+    /// method cannot reach beyond (`secondary_ray`, no direction). A loop at
+    /// constant `L` is a degenerate cycle (`pivot_limit`, said so).
+    fn closed(&self, k: usize) -> (Status, String) {
+        let lams = &self.exact_bps[k.min(self.exact_bps.len())..];
+        let moved = lams.windows(2).any(|w| w[0] != w[1]);
+        if !moved {
+            return (
+                Status::PivotLimit,
+                format!(
+                    "a cycle of degenerate pivots at L = {} (exact): the lexicographic rule on the stored columns of B^-1 did not break it",
+                    super::short(&self.lambda)
+                ),
+            );
+        }
+        let hi = lams.iter().max().expect("two");
+        let lo = lams.iter().min().expect("two");
+        (
+            Status::SecondaryRay,
+            format!(
+                "the path is a closed loop (exact): after {} breakpoints it returns to the basis it had after {k}, so Lemke's method from L0 = {} never leaves [{}, {}] (L = {:e} at most); no solution beyond that is reachable on this path",
+                self.breakpoints.len(),
+                super::short(&self.l0),
+                super::short(lo),
+                super::short(hi),
+                rational_to_f64(hi)
+            ),
+        )
     }
 
     /// The values of `z`, `w`, `u` at the current vertex plus `theta` of
