@@ -69,6 +69,10 @@ fn as_space(src: &str, rotate: Option<[[f64; 3]; 3]>) -> Option<String> {
         .and_then(Value::as_str)
         .unwrap_or("planar")
         .to_string();
+    if model == "space" {
+        // already a space scene (the riser runs): nothing to rewrite
+        return None;
+    }
     v.insert("model".into(), Value::String("space".into()));
     let r = rotate.unwrap_or([[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]]);
     let set3 = |t: &mut toml::value::Table, keys: [&str; 3], w: [f64; 3]| {

@@ -36,33 +36,7 @@ use crate::scalar::Scalar;
 use crate::settings::{Method, Settings};
 use faer::{fx128, Col};
 
-/// What a continuation in `fx128` did ([`crate::Info::escalation`]).
-#[derive(Clone, Debug, Default, PartialEq)]
-pub struct Escalation {
-    /// The precision the path started in (`f32`, `f64`).
-    pub from: &'static str,
-    /// The start of the segment from which the path was traced in `fx128`
-    /// (traced from inside it, on its basis; `lambda0` for a whole re-solve).
-    pub lambda: f64,
-    /// Why: the status and message of the path in the working precision.
-    pub reason: String,
-    /// The `fx128` run was warm-started from the basis of the path's segment
-    /// at `lambda`; `false`: the whole path was re-solved in `fx128` from
-    /// `lambda0`, and `note` says why.
-    pub warm: bool,
-    /// Why no warm start (empty when `warm`).
-    pub note: String,
-    /// Segments of the working-precision path kept (before `lambda`).
-    pub kept_segments: usize,
-    /// Pivots and seconds in the working precision (the abandoned run, all of it).
-    pub pivots_before: usize,
-    /// Seconds of the working-precision run.
-    pub seconds_before: f64,
-    /// Pivots of the `fx128` run.
-    pub pivots_fx128: usize,
-    /// Seconds of the `fx128` run (conversion and splicing included).
-    pub seconds_fx128: f64,
-}
+pub use crate::path::Escalation;
 
 /// The segments tried for a warm restart, from `k0` back: `k0, k0 - 1,
 /// k0 - 2, k0 - 4, ...` (doubling steps, at most about `log2(k0) + 2` tries,

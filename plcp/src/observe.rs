@@ -477,10 +477,8 @@ impl<T: Scalar> CompactPath<T> {
         let k = self.ranges.len();
         self.ranges
             .push((seg.lambda_from, seg.lambda_to, seg.unbounded));
-        let full = k == 0
-            || is_last
-            || (every > 0 && k % every == 0)
-            || seg.basis.len() != last.len();
+        let full =
+            k == 0 || is_last || (every > 0 && k % every == 0) || seg.basis.len() != last.len();
         if !full {
             for (i, (a, b)) in last.iter().zip(&seg.basis).enumerate() {
                 if a != b {

@@ -28,15 +28,17 @@ use faer::{Col, ColRef, MatRef};
 ///
 /// ```
 /// use faer::{col, mat};
-/// let m = mat![[2.0, 1.0], [1.0, 2.0]];
-/// let settings = plcp::Settings::default();
+/// let m = mat![[2.0f64, 1.0], [1.0, 2.0]];
+/// let settings = plcp::Settings::<f64>::default();
 /// let mut solver = plcp::Solver::new(m.as_ref(), &settings).unwrap();
 /// // the LCP at g_0 = (-1, 1), then the step to g_1 = (1, -1)
 /// let first = solver.lcp(col![-1.0, 1.0].as_ref()).unwrap();
-/// assert!((first.end.z[0] - 0.5).abs() < 1e-15);
+/// let z0: f64 = first.end.z[0];
+/// assert!((z0 - 0.5).abs() < 1e-15);
 /// let step = solver.step(col![-1.0, 1.0].as_ref(), col![2.0, -2.0].as_ref()).unwrap();
 /// assert_eq!(step.status, plcp::Status::Reached);
-/// assert!((step.end.z[1] - 0.5).abs() < 1e-15);
+/// let z1: f64 = step.end.z[1];
+/// assert!((z1 - 0.5).abs() < 1e-15);
 /// ```
 pub struct Solver<'a, T: Scalar> {
     m: MatRef<'a, T>,
