@@ -57,7 +57,8 @@
 
 // The public surface: the types and functions re-exported below, and the
 // modules a user opens by name (exact arithmetic, file formats, sparse
-// matrices, residuals, scaling, the tolerances every status depends on).
+// matrices, residuals, scaling, the tolerances every status depends on, the
+// observers and their memory model).
 // Everything else is the engine's inside.
 mod basis;
 mod error;
@@ -68,7 +69,7 @@ pub mod io;
 mod lemke;
 mod linalg;
 pub mod matrix;
-mod observe;
+pub mod observe;
 mod path;
 mod pivoting;
 mod problem;

@@ -18,6 +18,7 @@
 #[cfg(feature = "json")]
 pub mod json;
 pub mod siconos;
+#[cfg(feature = "json")]
 pub mod sparse_json;
 
 use crate::error::PlcpError;
