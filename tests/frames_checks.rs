@@ -3,15 +3,12 @@
 //! textbook portal collapse loads, the continuum cantilever, the residual of
 //! system (9) on every interval, and the absence of deactivations.
 
-use clarabel::algebra::CscMatrix;
-use clarabel::solver::{
-    DefaultSettingsBuilder, DefaultSolver, IPSolver, NonnegativeConeT, SolverStatus,
-    SupportedConeT, ZeroConeT,
-};
-use frames::assemble::MemberForce;
+#[path = "../frames/tests/common/reference.rs"]
+mod reference;
 use frames::{Analysis, AnalysisOptions, Scene, System};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
+use reference::{lp_collapse_load, qp_accelerations};
 
 fn scenes_dir() -> std::path::PathBuf {
     std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes")
@@ -74,105 +71,6 @@ fn run(scene: &Scene) -> Analysis {
         a.solution.info.residual
     );
     a
-}
-
-fn solve(
-    p: CscMatrix<f64>,
-    q: Vec<f64>,
-    triplets: (Vec<usize>, Vec<usize>, Vec<f64>),
-    b: Vec<f64>,
-    zero: usize,
-    n: usize,
-) -> Vec<f64> {
-    let rows = b.len();
-    let a = CscMatrix::new_from_triplets(rows, n, triplets.0, triplets.1, triplets.2);
-    let cones: Vec<SupportedConeT<f64>> = vec![ZeroConeT(zero), NonnegativeConeT(rows - zero)];
-    let settings = DefaultSettingsBuilder::default()
-        .verbose(false)
-        .tol_gap_abs(1e-10)
-        .tol_gap_rel(1e-10)
-        .tol_feas(1e-10)
-        .build()
-        .unwrap();
-    let mut solver = DefaultSolver::new(&p, &q, &a, &b, &cones, settings).unwrap();
-    solver.solve();
-    assert!(
-        matches!(solver.solution.status, SolverStatus::Solved),
-        "{:?}",
-        solver.solution.status
-    );
-    solver.solution.x.clone()
-}
-
-/// Lower-bound theorem: max L s.t. A^T X = a_o L, |moment| <= Mp (axial forces free).
-fn lp_collapse_load(sys: &System) -> f64 {
-    let (nb, ns) = (sys.coordinates.len(), sys.forces.len());
-    let n = ns + 1;
-    let (mut ii, mut jj, mut vv, mut b) = (vec![], vec![], vec![], vec![]);
-    for j in 0..nb {
-        for r in 0..ns {
-            if sys.a[(r, j)] != 0.0 {
-                ii.push(j);
-                jj.push(r);
-                vv.push(sys.a[(r, j)]);
-            }
-        }
-        ii.push(j);
-        jj.push(ns);
-        vv.push(-sys.load[j]);
-        b.push(0.0);
-    }
-    let mut row = nb;
-    for (r, f) in sys.forces.iter().enumerate() {
-        if let MemberForce::Moment(k) = *f {
-            for s in [1.0, -1.0] {
-                ii.push(row);
-                jj.push(r);
-                vv.push(s);
-                b.push(sys.sections[k].plastic_moment);
-                row += 1;
-            }
-        }
-    }
-    let mut q = vec![0.0; n];
-    q[ns] = -1.0;
-    let x = solve(CscMatrix::zeros((n, n)), q, (ii, jj, vv), b, nb, n);
-    x[ns]
-}
-
-/// The convex QP of the notes: min 1/2 a'M_q a - L a_o'a + X*'x s.t. A a - T N x = 0, x >= 0.
-fn qp_accelerations(sys: &System, lambda: f64) -> Vec<f64> {
-    let (nb, ns, np) = (sys.coordinates.len(), sys.forces.len(), sys.modes.len());
-    let n = nb + np;
-    let p =
-        CscMatrix::new_from_triplets(n, n, (0..nb).collect(), (0..nb).collect(), sys.mass.clone());
-    let mut q: Vec<f64> = sys.load.iter().map(|l| -lambda * l).collect();
-    q.extend(sys.capacities.iter().cloned());
-    let (mut ii, mut jj, mut vv, mut b) = (vec![], vec![], vec![], vec![]);
-    for r in 0..ns {
-        for j in 0..nb {
-            if sys.a[(r, j)] != 0.0 {
-                ii.push(r);
-                jj.push(j);
-                vv.push(sys.a[(r, j)]);
-            }
-        }
-        for k in 0..np {
-            if sys.tn[(r, k)] != 0.0 {
-                ii.push(r);
-                jj.push(nb + k);
-                vv.push(-sys.tn[(r, k)]);
-            }
-        }
-        b.push(0.0);
-    }
-    for k in 0..np {
-        ii.push(ns + k);
-        jj.push(nb + k);
-        vv.push(-1.0);
-        b.push(0.0);
-    }
-    solve(p, q, (ii, jj, vv), b, ns, n)[..nb].to_vec()
 }
 
 fn check_against_lp_and_qp(a: &Analysis, rng: &mut ChaCha8Rng) {

@@ -6,11 +6,10 @@
 //! cantilever reproduced out of plane, and the reduced against the full
 //! assembly.
 
-use clarabel::algebra::CscMatrix;
-use clarabel::solver::{
-    DefaultSettingsBuilder, DefaultSolver, IPSolver, NonnegativeConeT, SolverStatus,
-    SupportedConeT, ZeroConeT,
-};
+mod common {
+    pub mod reference;
+}
+use common::reference::{lp_collapse_load, qp_accelerations};
 use frames::assemble::MemberForce;
 use frames::model::{Component, Model};
 use frames::yield_surface::{Curve, Polygon};
@@ -65,102 +64,6 @@ impl Lcg {
             .wrapping_add(1_442_695_040_888_963_407);
         ((self.0 >> 11) as f64) / ((1u64 << 53) as f64)
     }
-}
-
-fn clarabel(
-    p: CscMatrix<f64>,
-    q: Vec<f64>,
-    t: (Vec<usize>, Vec<usize>, Vec<f64>),
-    b: Vec<f64>,
-    zero: usize,
-    n: usize,
-) -> Vec<f64> {
-    let rows = b.len();
-    let a = CscMatrix::new_from_triplets(rows, n, t.0, t.1, t.2);
-    let cones: Vec<SupportedConeT<f64>> = vec![ZeroConeT(zero), NonnegativeConeT(rows - zero)];
-    let settings = DefaultSettingsBuilder::default()
-        .verbose(false)
-        .tol_gap_abs(1e-11)
-        .tol_gap_rel(1e-11)
-        .tol_feas(1e-11)
-        .build()
-        .unwrap();
-    let mut solver = DefaultSolver::new(&p, &q, &a, &b, &cones, settings).unwrap();
-    solver.solve();
-    assert!(
-        matches!(solver.solution.status, SolverStatus::Solved),
-        "{:?}",
-        solver.solution.status
-    );
-    solver.solution.x.clone()
-}
-
-/// Lower-bound theorem: max L s.t. A^T X = a_o L, (T N)^T X <= X*.
-fn lp_collapse_load(sys: &System) -> f64 {
-    let (nb, ns, np) = (sys.coordinates.len(), sys.forces.len(), sys.modes.len());
-    let n = ns + 1;
-    let (mut ii, mut jj, mut vv, mut b) = (vec![], vec![], vec![], vec![]);
-    for j in 0..nb {
-        for r in 0..ns {
-            if sys.a[(r, j)] != 0.0 {
-                ii.push(j);
-                jj.push(r);
-                vv.push(sys.a[(r, j)]);
-            }
-        }
-        ii.push(j);
-        jj.push(ns);
-        vv.push(-sys.load[j]);
-        b.push(0.0);
-    }
-    for k in 0..np {
-        for r in 0..ns {
-            if sys.tn[(r, k)] != 0.0 {
-                ii.push(nb + k);
-                jj.push(r);
-                vv.push(sys.tn[(r, k)]);
-            }
-        }
-        b.push(sys.capacities[k]);
-    }
-    let mut q = vec![0.0; n];
-    q[ns] = -1.0;
-    clarabel(CscMatrix::zeros((n, n)), q, (ii, jj, vv), b, nb, n)[ns]
-}
-
-/// The convex QP of the notes: min 1/2 a'M_q a - L a_o'a + X*'x s.t. A a = T N x, x >= 0.
-fn qp_accelerations(sys: &System, lambda: f64) -> Vec<f64> {
-    let (nb, ns, np) = (sys.coordinates.len(), sys.forces.len(), sys.modes.len());
-    let n = nb + np;
-    let p =
-        CscMatrix::new_from_triplets(n, n, (0..nb).collect(), (0..nb).collect(), sys.mass.clone());
-    let mut q: Vec<f64> = sys.load.iter().map(|l| -lambda * l).collect();
-    q.extend(sys.capacities.iter().cloned());
-    let (mut ii, mut jj, mut vv, mut b) = (vec![], vec![], vec![], vec![]);
-    for r in 0..ns {
-        for j in 0..nb {
-            if sys.a[(r, j)] != 0.0 {
-                ii.push(r);
-                jj.push(j);
-                vv.push(sys.a[(r, j)]);
-            }
-        }
-        for k in 0..np {
-            if sys.tn[(r, k)] != 0.0 {
-                ii.push(r);
-                jj.push(nb + k);
-                vv.push(-sys.tn[(r, k)]);
-            }
-        }
-        b.push(0.0);
-    }
-    for k in 0..np {
-        ii.push(ns + k);
-        jj.push(nb + k);
-        vv.push(-1.0);
-        b.push(0.0);
-    }
-    clarabel(p, q, (ii, jj, vv), b, ns, n)[..nb].to_vec()
 }
 
 /// Accelerations of the path at `lambda`, per kept coordinate.
