@@ -10,7 +10,8 @@
 //! `--ref-max-n N` (largest n with the fx128 reference, default 500),
 //! `--quick` (the default refactorisation period only), `--repeats R` (best of at most
 //! R runs, default 3; a configuration stops repeating once its runs have
-//! taken 3 s), `--out DIR` (default `out/speed`).
+//! taken 3 s), `--out DIR` (default `out/speed`), `--quiet` (no progress bar;
+//! the bar is drawn on stderr only when it is a terminal).
 //!
 //! Instances: `plcp_workspace::random::path_instance(n, 1)` (as the benches):
 //! `M = B B'/n + 0.1 I`, `q` uniform in `[0.1, 1]`, `d = N(0,1) - 0.5`,
@@ -54,6 +55,7 @@ struct Options {
     quick: bool,
     repeats: usize,
     out: std::path::PathBuf,
+    quiet: bool,
 }
 
 fn options() -> Options {
@@ -64,6 +66,7 @@ fn options() -> Options {
         quick: false,
         repeats: 3,
         out: "out/speed".into(),
+        quiet: false,
     };
     let mut max_n = usize::MAX;
     let mut i = 0;
@@ -81,6 +84,11 @@ fn options() -> Options {
             "--out" => o.out = val(i).into(),
             "--quick" => {
                 o.quick = true;
+                i += 1;
+                continue;
+            }
+            "--quiet" => {
+                o.quiet = true;
                 i += 1;
                 continue;
             }
@@ -306,7 +314,9 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         "{:>5} {:<32} {:>10} {:>9} {:>9} {:>5} {:>9} {:<10}",
         "n", "candidate", "time [s]", "z err", "bp err", "bps", "residual", "status"
     );
+    let bar = plcp::progress::Progress::bar(o.sizes.len() as u64, "sizes", o.quiet);
     for &n in &o.sizes {
+        bar.message(&format!("n = {n}: instance and reference"));
         let t0 = Instant::now();
         let inst = path_instance(n, 1);
         let problem = &inst.problem;
@@ -325,10 +335,12 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             Reference::F64(plcp::solve(problem, &settings).expect("valid"))
         };
         let ref_seconds = t1.elapsed().as_secs_f64();
-        eprintln!(
-            "n = {n}: instance {setup:.1} s, reference ({}) {ref_seconds:.1} s",
-            reference.name()
-        );
+        bar.suspend(|| {
+            eprintln!(
+                "n = {n}: instance {setup:.1} s, reference ({}) {ref_seconds:.1} s",
+                reference.name()
+            )
+        });
         refs.push((n, format!("{} ({ref_seconds:.1} s)", reference.name())));
         let points = samples(&reference, lmax);
         let ref_z: Vec<Vec<f64>> = points
@@ -355,37 +367,41 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
                                 &points, &ref_z,
                             )
                         };
-                        print_row(&row);
+                        bar.suspend(|| print_row(&row));
                         rows.push(row);
                     }
+                    bar.message(&format!("n = {n}: {method:?} {basis:?}"));
                     if basis == BasisKind::Block {
                         // the column refinement's share: the same without it
                         let row = run_plcp::<f64>(
                             problem, n, method, basis, rp, false, o.repeats, &reference, &points,
                             &ref_z,
                         );
-                        print_row(&row);
+                        bar.suspend(|| print_row(&row));
                         rows.push(row);
                     }
                 }
             }
         }
         // Clarabel: at L_max first; K samples only when affordable (<= 120 s estimated)
+        bar.message(&format!("n = {n}: clarabel"));
         for tol in [peer::Tolerance::Default, peer::Tolerance::Tight] {
             let one = run_clarabel(problem, n, lmax, 1, tol, o.repeats, &reference);
             let single = one.seconds;
-            print_row(&one);
+            bar.suspend(|| print_row(&one));
             rows.push(one);
             for k in [10usize, 100] {
                 if single * k as f64 > 120.0 {
-                    println!(
-                        "{n:>5} clarabel K={k} skipped (about {:.0} s estimated)",
-                        single * k as f64
-                    );
+                    bar.suspend(|| {
+                        println!(
+                            "{n:>5} clarabel K={k} skipped (about {:.0} s estimated)",
+                            single * k as f64
+                        )
+                    });
                     continue;
                 }
                 let row = run_clarabel(problem, n, lmax, k, tol, o.repeats, &reference);
-                print_row(&row);
+                bar.suspend(|| print_row(&row));
                 rows.push(row);
             }
         }
@@ -400,7 +416,9 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             base.seconds,
             base.seconds / base.breakpoints.max(1) as f64,
         ));
+        bar.inc(1);
     }
+    bar.finish();
     // CSV
     let mut csv = String::from(
         "n,candidate,family,basis,refactor_period,seconds,z_err,bp_err,bp_count_differs,breakpoints,pivots,residual,status\n",

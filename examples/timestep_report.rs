@@ -13,7 +13,8 @@
 //! Options: `--finest X` (smallest h/T, default 1e-4; 1e-5 takes longer than a
 //! minute over all scenes), `--scenes a,b,...` (names in `scenes/`, default
 //! all seven), `--repeats R` (PLCP analysis: best of R runs, default 5),
-//! `--out DIR` (default `out/timestep`).
+//! `--out DIR` (default `out/timestep`), `--quiet` (no progress bar; the bar
+//! is drawn on stderr only when it is a terminal).
 //!
 //! The pipe-whip scenes run with `--scenes pipe-whip/l-shaped,pipe-whip/straight`
 //! etc. They are not in the default list: at h/T down to 1e-4 the five take
@@ -62,6 +63,7 @@ struct Options {
     scenes: Vec<String>,
     repeats: usize,
     out: std::path::PathBuf,
+    quiet: bool,
 }
 
 fn options() -> Options {
@@ -71,9 +73,15 @@ fn options() -> Options {
         scenes: SCENES.iter().map(|s| s.to_string()).collect(),
         repeats: 5,
         out: "out/timestep".into(),
+        quiet: false,
     };
     let mut i = 0;
     while i < args.len() {
+        if args[i] == "--quiet" {
+            o.quiet = true;
+            i += 1;
+            continue;
+        }
         let val = args
             .get(i + 1)
             .unwrap_or_else(|| panic!("{} needs a value", args[i]));
@@ -101,7 +109,10 @@ fn main() {
     let mut verdicts = Vec::new();
     let mut rels = vec![1e-1, 1e-2, 1e-3, 1e-4, 1e-5];
     rels.retain(|&r| r >= o.finest * 0.999);
+    // one tick per (scene, step): the finest steps dominate the time
+    let bar = plcp::progress::Progress::bar((o.scenes.len() * rels.len()) as u64, "runs", o.quiet);
     for name in &o.scenes {
+        bar.message(name);
         let scene = Scene::from_file(format!("{root}/{name}.toml")).expect("scene");
         let mut best = f64::INFINITY;
         let mut analysis = None;
@@ -114,28 +125,30 @@ fn main() {
         let a = analysis.expect("at least one run");
         let t_end = *a.response.time.times.last().expect("a time response");
         let plcp_dea = a.reading.deactivations().len();
-        println!(
+        bar.suspend(|| println!(
             "\n{name}: T = {t_end:.4}, PLCP analysis {:.3} ms ({} pivots), PLCP deactivations: {plcp_dea}{}",
             best * 1e3,
             a.solution.info.pivots,
             frames::timestep::plcp_valid_until(&a)
                 .map(|(l, t)| format!(" (first at Lambda = {l:.4}, t = {t:.4}: compared there)"))
                 .unwrap_or_default()
-        );
-        println!(
-            "{:>8} {:>10} {:>8} {:>11} {:>9} {:>10} {:>10} {:>6} {:>8} {:>9} {:>5}",
-            "h/T",
-            "h",
-            "steps",
-            "time",
-            "ratio",
-            "disp err",
-            "act err",
-            "order",
-            "pivots",
-            "residual",
-            "stops"
-        );
+        ));
+        bar.suspend(|| {
+            println!(
+                "{:>8} {:>10} {:>8} {:>11} {:>9} {:>10} {:>10} {:>6} {:>8} {:>9} {:>5}",
+                "h/T",
+                "h",
+                "steps",
+                "time",
+                "ratio",
+                "disp err",
+                "act err",
+                "order",
+                "pivots",
+                "residual",
+                "stops"
+            )
+        });
         let mut prev: Option<(f64, f64)> = None;
         let mut stops_at_finest = Vec::new();
         let mut decel_at_finest = None;
@@ -146,7 +159,9 @@ fn main() {
                 ..StepOptions::default()
             };
             let ts = TimeStepping::new(&a.system, &a.scene.history, &opts).expect("options");
+            bar.message(&format!("{name}, h/T = {rel:.0e}"));
             let run = ts.run(&StepState::rest(&a.system)).expect("run");
+            bar.inc(1);
             let c = compare(&a, &run);
             let rel_disp = c.displacement_error / c.displacement_scale.max(f64::MIN_POSITIVE);
             let rel_act = c.activation_error / t_end;
@@ -161,7 +176,7 @@ fn main() {
             } else {
                 " STOPPED"
             };
-            println!(
+            bar.suspend(|| println!(
                 "{:>8.0e} {:>10.3e} {:>8} {:>9.3}ms {:>9.1} {:>10.2e} {:>10.2e} {:>6} {:>8} {:>9.1e} {:>5}{status}",
                 rel,
                 run.h,
@@ -174,7 +189,7 @@ fn main() {
                 run.pivots(),
                 run.worst_residual(),
                 stops.len()
-            );
+            ));
             let _ = writeln!(
                 csv,
                 "{name},{rel:e},{:e},{},{:e},{best:e},{ratio:e},{rel_disp:e},{rel_act:e},{},{},{:e},{},{plcp_dea},{:e},{t_end:e}",
@@ -235,9 +250,10 @@ fn main() {
                 stops_at_finest.join("; ")
             ),
         };
-        println!("verdict: {verdict}");
+        bar.suspend(|| println!("verdict: {verdict}"));
         verdicts.push(format!("{name}: {verdict}"));
     }
+    bar.finish();
     println!("\nverdicts (at the finest step):");
     for v in &verdicts {
         println!("  {v}");
