@@ -97,6 +97,32 @@ impl Analysis {
     /// assert_eq!(a.scene.frame.nodes[a.reading.hinges[0].node].id, "A");
     /// ```
     pub fn run(scene: Scene, options: &AnalysisOptions) -> Result<Analysis, FramesError> {
+        Self::run_watched(scene, options, None)
+    }
+
+    /// [`Analysis::run`], with `watch` called after every segment of the trace
+    /// (`Lambda`, pivots and breakpoints so far: what `frames run` shows in its
+    /// progress line). Not called for exact precision or certification,
+    /// which trace the path whole.
+    ///
+    /// ```
+    /// use std::{cell::RefCell, rc::Rc};
+    /// let file = concat!(env!("CARGO_MANIFEST_DIR"), "/../scenes/cantilever.toml");
+    /// let scene = frames::Scene::from_file(file).unwrap();
+    /// let seen = Rc::new(RefCell::new(Vec::new()));
+    /// let log = seen.clone();
+    /// let watch: frames::solve::Watch =
+    ///     Rc::new(RefCell::new(move |t: &frames::solve::Tick| log.borrow_mut().push(t.lambda)));
+    /// let a = frames::Analysis::run_watched(scene, &Default::default(), Some(watch)).unwrap();
+    /// // one tick per segment of the path, in order of Lambda
+    /// assert_eq!(seen.borrow().len(), a.solution.pieces.len());
+    /// assert!(seen.borrow().windows(2).all(|w| w[0] <= w[1]));
+    /// ```
+    pub fn run_watched(
+        scene: Scene,
+        options: &AnalysisOptions,
+        watch: Option<solve::Watch>,
+    ) -> Result<Analysis, FramesError> {
         if let Some(t) = options.t_end {
             if t.is_nan() || t <= 0.0 || !t.is_finite() {
                 return Err(FramesError::invalid(
@@ -114,6 +140,8 @@ impl Analysis {
                 solve::solve_exact(&system, o)
             } else if options.certify {
                 solve::solve_certified(&system, o, escalate)
+            } else if let Some(w) = &watch {
+                solve::solve_watched(&system, o, escalate, w.clone())
             } else {
                 solve::solve_escalating(&system, o, escalate)
             }

@@ -3,7 +3,9 @@
 
 use crate::assemble::System;
 use crate::error::FramesError;
-use plcp::{Method, Path, Precision, Scalar, Settings, Status};
+use plcp::{Control, Keep, Method, Observer, Path, Precision, Scalar, Segment, Settings, Status};
+use std::cell::RefCell;
+use std::rc::Rc;
 
 /// How to solve.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -96,25 +98,29 @@ fn to_vec<T: Scalar>(c: &faer::Col<T>) -> Vec<f64> {
     (0..c.nrows()).map(|i| c[i].to_f64()).collect()
 }
 
+fn piece<T: Scalar>(s: &Segment<T>) -> Piece {
+    Piece {
+        lambda_from: s.lambda_from.to_f64(),
+        lambda_to: if s.unbounded {
+            f64::INFINITY
+        } else {
+            s.lambda_to.to_f64()
+        },
+        u_from: to_vec(&s.u_from),
+        du: to_vec(&s.du),
+        z_from: to_vec(&s.z_from),
+        dz: to_vec(&s.dz),
+        w_from: to_vec(&s.w_from),
+        dw: to_vec(&s.dw),
+    }
+}
+
 fn read<T: Scalar>(path: Path<T>) -> Solution {
-    let pieces = path
-        .segments
-        .iter()
-        .map(|s| Piece {
-            lambda_from: s.lambda_from.to_f64(),
-            lambda_to: if s.unbounded {
-                f64::INFINITY
-            } else {
-                s.lambda_to.to_f64()
-            },
-            u_from: to_vec(&s.u_from),
-            du: to_vec(&s.du),
-            z_from: to_vec(&s.z_from),
-            dz: to_vec(&s.dz),
-            w_from: to_vec(&s.w_from),
-            dw: to_vec(&s.dw),
-        })
-        .collect();
+    let pieces = path.segments.iter().map(piece).collect();
+    solution(path, pieces)
+}
+
+fn solution<T: Scalar>(path: Path<T>, pieces: Vec<Piece>) -> Solution {
     let eps = T::eps().to_f64();
     Solution {
         status: path.status,
@@ -124,6 +130,78 @@ fn read<T: Scalar>(path: Path<T>) -> Solution {
         info: path.info,
         tolerance: (eps.sqrt() * 10.0).max(1e-13),
     }
+}
+
+/// Where the trace of system (9) stands after a segment: what a progress
+/// display shows ([`solve_watched`], [`crate::Analysis::run_watched`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Tick {
+    /// `Lambda` at the end of the segment just traced (`inf` for a ray).
+    pub lambda: f64,
+    /// Pivots so far.
+    pub pivots: usize,
+    /// Breakpoints so far.
+    pub breakpoints: usize,
+}
+
+/// A watcher of a trace, called once per segment (shared, so that a re-solve
+/// in a higher precision reports to the same display).
+pub type Watch = Rc<RefCell<dyn FnMut(&Tick)>>;
+
+/// The observer of the trace: each segment read into a [`Piece`] as soon as
+/// it is traced, so that plcp keeps no segment of its own (its memory is the
+/// pieces', not twice that), and the watcher told.
+struct Reader {
+    pieces: Vec<Piece>,
+    watch: Option<Watch>,
+}
+
+impl<T: Scalar> Observer<T> for Reader {
+    fn on_segment(&mut self, segment: &Segment<T>, progress: &plcp::Progress<'_, T>) -> Control {
+        let p = piece(segment);
+        if let Some(w) = &self.watch {
+            (w.borrow_mut())(&Tick {
+                lambda: p.lambda_to,
+                pivots: progress.pivots,
+                breakpoints: progress.breakpoints,
+            });
+        }
+        self.pieces.push(p);
+        Control::Continue
+    }
+}
+
+/// Traces `problem` with the pieces read as the segments come
+/// ([`plcp::solve_observed`], [`Keep::Nothing`]): the same numbers as
+/// [`plcp::solve`] then [`read`], bit for bit (a test checks it on every
+/// scene).
+fn trace_read<T: Scalar + 'static>(
+    problem: &plcp::Plcp<T>,
+    settings: &Settings<T>,
+    watch: Option<Watch>,
+) -> Result<Solution, FramesError> {
+    let reader = Reader {
+        pieces: Vec::new(),
+        watch,
+    };
+    let mut run = plcp::solve_observed(problem, settings, reader, Keep::Nothing)?;
+    if run.path.info.escalation.is_some() {
+        // The escalation picks its restart among the segments the path holds,
+        // and a streamed path holds only its first and latest: traced again
+        // whole, so that the answer is the one plcp::solve gives (a stiff
+        // path pays the f64 trace twice; large paths rarely escalate).
+        return Ok(read(plcp::solve(problem, settings)?));
+    }
+    let mut pieces = std::mem::take(&mut run.observer.pieces);
+    // the residual guard of plcp::solve, applied after the segments were
+    // seen, turns a success into ill_conditioned and claims nothing beyond the
+    // last finite point: the unbounded last segment is cut to its start
+    if run.path.status == Status::IllConditioned {
+        if let Some(last) = pieces.last_mut().filter(|p| p.lambda_to == f64::INFINITY) {
+            last.lambda_to = last.lambda_from;
+        }
+    }
+    Ok(solution(run.path, pieces))
 }
 
 /// Systems of at least this many unknowns (`beta + s + p`) go to plcp in
@@ -144,11 +222,12 @@ pub fn uses_sparse(system: &System, options: &SolveOptions) -> bool {
     options.method == Method::Wolfe && s.free() + s.modes >= SPARSE_FROM
 }
 
-fn solve_in<T: Scalar>(
+fn solve_in<T: Scalar + 'static>(
     system: &System,
     options: &SolveOptions,
     escalate: bool,
     certify: bool,
+    watch: Option<Watch>,
 ) -> Result<Solution, FramesError> {
     let mut settings = Settings::<T>::with_method(options.method);
     settings.escalate = escalate;
@@ -158,12 +237,12 @@ fn solve_in<T: Scalar>(
     } else {
         system.plcp::<T>(options.lambda_max)?
     };
-    let path = if certify {
-        plcp::solve_certified(&problem, &settings)?
+    if certify {
+        // the certificate needs every segment: stored whole
+        Ok(read(plcp::solve_certified(&problem, &settings)?))
     } else {
-        plcp::solve(&problem, &settings)?
-    };
-    Ok(read(path))
+        trace_read(&problem, &settings, watch)
+    }
 }
 
 /// [`solve_escalating`], then the path certified in exact rational
@@ -175,7 +254,7 @@ pub fn solve_certified(
     options: &SolveOptions,
     escalate: bool,
 ) -> Result<Solution, FramesError> {
-    solve_checked(system, options, escalate, true)
+    solve_checked(system, options, escalate, true, None)
 }
 
 /// Solves system (9) in exact rational arithmetic ([`plcp::exact::trace`],
@@ -218,7 +297,18 @@ pub fn solve_escalating(
     options: &SolveOptions,
     escalate: bool,
 ) -> Result<Solution, FramesError> {
-    solve_checked(system, options, escalate, false)
+    solve_checked(system, options, escalate, false, None)
+}
+
+/// [`solve_escalating`] with `watch` called after every segment of the trace
+/// (for a progress display: `Lambda`, pivots and breakpoints so far).
+pub fn solve_watched(
+    system: &System,
+    options: &SolveOptions,
+    escalate: bool,
+    watch: Watch,
+) -> Result<Solution, FramesError> {
+    solve_checked(system, options, escalate, false, Some(watch))
 }
 
 fn solve_checked(
@@ -226,6 +316,7 @@ fn solve_checked(
     options: &SolveOptions,
     escalate: bool,
     certify: bool,
+    watch: Option<Watch>,
 ) -> Result<Solution, FramesError> {
     if let Some(l) = options.lambda_max {
         if l.is_nan() || l <= 0.0 {
@@ -236,9 +327,9 @@ fn solve_checked(
         }
     }
     let floats = match options.precision {
-        Precision::F32 => solve_in::<f32>(system, options, escalate, certify)?,
-        Precision::F64 => solve_in::<f64>(system, options, escalate, certify)?,
-        Precision::F128 => solve_in::<faer::fx128>(system, options, false, certify)?,
+        Precision::F32 => solve_in::<f32>(system, options, escalate, certify, watch)?,
+        Precision::F64 => solve_in::<f64>(system, options, escalate, certify, watch)?,
+        Precision::F128 => solve_in::<faer::fx128>(system, options, false, certify, watch)?,
     };
     Ok(escalate_to_exact(system, options, escalate, floats))
 }
@@ -281,5 +372,106 @@ fn escalate_to_exact(
             exact
         }
         Ok(_) | Err(_) => floats,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::model::Scene;
+
+    fn scenes() -> Vec<std::path::PathBuf> {
+        let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../scenes");
+        let mut files = Vec::new();
+        for dir in [root.clone(), root.join("pipe-whip"), root.join("stiff")] {
+            for e in std::fs::read_dir(dir).unwrap() {
+                let p = e.unwrap().path();
+                if p.extension().is_some_and(|x| x == "toml") {
+                    files.push(p);
+                }
+            }
+        }
+        files.sort();
+        files
+    }
+
+    fn bits(v: &[f64]) -> Vec<u64> {
+        v.iter().map(|x| x.to_bits()).collect()
+    }
+
+    fn same(a: &Solution, b: &Solution, what: &str) {
+        assert_eq!(a.status, b.status, "{what}");
+        assert_eq!(
+            a.lambda_reached.to_bits(),
+            b.lambda_reached.to_bits(),
+            "{what}"
+        );
+        assert_eq!(a.pieces.len(), b.pieces.len(), "{what}");
+        for (k, (p, q)) in a.pieces.iter().zip(&b.pieces).enumerate() {
+            let w = format!("{what}, piece {k}");
+            assert_eq!(p.lambda_from.to_bits(), q.lambda_from.to_bits(), "{w}");
+            assert_eq!(p.lambda_to.to_bits(), q.lambda_to.to_bits(), "{w}");
+            for (x, y) in [
+                (&p.u_from, &q.u_from),
+                (&p.du, &q.du),
+                (&p.z_from, &q.z_from),
+                (&p.dz, &q.dz),
+                (&p.w_from, &q.w_from),
+                (&p.dw, &q.dw),
+            ] {
+                assert_eq!(bits(x), bits(y), "{w}");
+            }
+        }
+    }
+
+    fn stored<T: Scalar>(system: &System, o: &SolveOptions, escalate: bool) -> Solution {
+        let mut settings = Settings::<T>::with_method(o.method);
+        settings.escalate = escalate;
+        let problem = if uses_sparse(system, o) {
+            settings.basis = plcp::BasisKind::Sparse;
+            system.plcp_sparse::<T>(o.lambda_max).unwrap()
+        } else {
+            system.plcp::<T>(o.lambda_max).unwrap()
+        };
+        read(plcp::solve(&problem, &settings).unwrap())
+    }
+
+    /// Reading the path as it is traced (the observer) gives the pieces that
+    /// reading the stored path gives, bit for bit, on every scene, in f32
+    /// (paths the residual guard fails), f64 with the escalation (paths
+    /// continued in fx128) and Lemke where the frame allows it.
+    #[test]
+    fn streamed_pieces_equal_stored_pieces_on_every_scene() {
+        let files = scenes();
+        assert!(files.len() >= 20, "{files:?}");
+        let mut escalated = 0;
+        for f in files {
+            let scene = Scene::from_file(&f).unwrap();
+            let system = System::assemble(&scene.frame);
+            let name = f.display().to_string();
+            for (method, precision, escalate) in [
+                (Method::Wolfe, Precision::F64, true),
+                (Method::Wolfe, Precision::F32, false),
+                (Method::Lemke, Precision::F64, false),
+            ] {
+                let o = SolveOptions {
+                    method,
+                    precision,
+                    lambda_max: None,
+                };
+                let what = format!("{name} {method:?} {precision:?}");
+                let streamed = match solve_escalating(&system, &o, escalate) {
+                    Ok(s) => s,
+                    Err(_) => continue, // Lemke on an indeterminate frame
+                };
+                let reference = match precision {
+                    Precision::F32 => stored::<f32>(&system, &o, escalate),
+                    _ => stored::<f64>(&system, &o, escalate),
+                };
+                escalated += streamed.info.escalation.is_some() as usize;
+                same(&streamed, &reference, &what);
+            }
+        }
+        assert!(escalated > 0, "no scene exercised the escalation");
     }
 }

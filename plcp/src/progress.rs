@@ -21,6 +21,7 @@ use std::time::Duration;
 /// }
 /// bar.finish();
 /// ```
+#[derive(Clone)]
 pub struct Progress {
     bar: Option<ProgressBar>,
 }
