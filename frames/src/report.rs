@@ -418,6 +418,18 @@ impl Analysis {
     /// `sel` asks for them (see [`OutputSelection`]); `Err` names an unknown
     /// node id.
     pub fn to_json_selected(&self, sel: &OutputSelection) -> Result<Value, String> {
+        serde_json::to_value(self.json_report(sel)?).map_err(|e| e.to_string())
+    }
+
+    /// The JSON document of [`Analysis::to_json_selected`] as a value that
+    /// serialises itself part by part: the per-breakpoint, per-interval and
+    /// per-diagram entries are built one at a time as they are written, so
+    /// that writing it (`serde_json::to_writer(w, &report)`, what `frames run
+    /// --json` does) holds one entry in memory, not the document. The bytes
+    /// written are those of serialising [`Analysis::to_json_selected`]'s value
+    /// (keys in the same sorted order; a test checks it). [`JsonReport::insert`]
+    /// adds a key.
+    pub fn json_report(&self, sel: &OutputSelection) -> Result<JsonReport<'_>, String> {
         let fr = &self.scene.frame;
         let node_ids: Vec<&str> = fr.nodes.iter().map(|n| n.id.as_str()).collect();
         let node_sel = sel.node_indices(&node_ids)?;
@@ -482,11 +494,8 @@ impl Analysis {
             "certificate": info.certificate.as_ref().map(|c| c.to_json()),
             "exact_critical_loads": info.certificate.as_ref().map(|_| self.exact_critical_loads()),
         });
-        let breakpoints: Vec<Value> = self
-            .reading
-            .breakpoints
-            .iter()
-            .map(|b| {
+        let breakpoints = Part::seq(move || {
+            self.reading.breakpoints.iter().map(|b| {
                 let mut o = Map::new();
                 o.insert("lambda".into(), num(b.lambda));
                 for k in [
@@ -503,7 +512,7 @@ impl Analysis {
                 o.insert("stress_unique".into(), json!(b.stress_unique));
                 Value::Object(o)
             })
-            .collect();
+        });
         let hinges: Vec<Value> = self
             .reading
             .hinges
@@ -532,15 +541,23 @@ impl Analysis {
                 })
                 .collect()
         };
-        let intervals: Vec<Value> = self
-            .reading
+        // the lazy parts own their selections (shared, as each pass of the
+        // serialiser makes a new iterator)
+        let (n_interval_sel, n_diagram_sel) = (interval_sel.len(), diagram_sel.len());
+        let node_sel_iv = std::rc::Rc::new(node_sel.clone());
+        let interval_sel = std::rc::Rc::new(interval_sel);
+        let diagram_sel = std::rc::Rc::new(diagram_sel);
+        let intervals = Part::seq(move || {
+            let node_sel = node_sel_iv.clone();
+            let interval_sel = interval_sel.clone();
+            self.reading
             .intervals
             .iter()
             .zip(&self.response.intervals)
             .enumerate()
-            .map(|(k, (iv, r))| {
+            .map(move |(k, (iv, r))| {
                 let mut acc = Map::new();
-                for &i in &node_sel {
+                for &i in node_sel.iter() {
                     let n = &fr.nodes[i];
                     let mut o = Map::new();
                     for c in fr.model.components() {
@@ -582,17 +599,18 @@ impl Analysis {
                     "residual": {"equation": r.residual.equation, "feasibility": r.residual.feasibility, "complementarity": r.residual.complementarity},
                 })
             })
-            .collect();
-        let moments: Vec<Value> = self
-            .response
+        });
+        let moments = Part::seq(move || {
+            let diagram_sel = diagram_sel.clone();
+            self.response
             .moments_at_breakpoints
             .iter()
             .zip(self.reading.intervals.iter().filter(|i| !i.rigid))
             .enumerate()
-            .filter(|(k, _)| diagram_sel.binary_search(k).is_ok())
+            .filter(move |(k, _)| diagram_sel.binary_search(k).is_ok())
             .map(|(_, x)| x)
             .map(|(d, iv)| json!({"lambda": num(d.lambda), "members": self.member_moments(|k| d.moments[k]), "second_forces": self.member_second_forces(&self.solution.pieces[iv.piece_at(d.lambda)], Some(d.lambda))}))
-            .collect();
+        });
         let t = &self.response.time;
         let mut nodes = Map::new();
         for &i in &node_sel {
@@ -613,36 +631,40 @@ impl Analysis {
             );
         }
         let output = json!({
-            "moments": sel.describe("Lambda values with moment distributions", diagram_sel.len(), diagram_lambdas.len(), "--moments"),
-            "interval_moments": sel.describe("intervals with moment pieces", interval_sel.len(), interval_lambdas.len(), "--moments"),
+            "moments": sel.describe("Lambda values with moment distributions", n_diagram_sel, diagram_lambdas.len(), "--moments"),
+            "interval_moments": sel.describe("intervals with moment pieces", n_interval_sel, interval_lambdas.len(), "--moments"),
             "nodes": sel.describe("nodes with accelerations and series", node_sel.len(), node_ids.len(), "--nodes"),
         });
-        Ok(json!({
-            "scene": self.scene.file,
-            "title": fr.title,
-            "output": output,
-            "system": system,
-            "solver": solver,
-            "status": self.solution.status.as_str(),
-            "collapse_load": self.reading.collapse_load().map(num).unwrap_or(Value::Null),
-            "model": fr.model.as_str(),
-            "conventions": match fr.model {
+        let mut report = JsonReport { parts: Vec::new() };
+        for (key, part) in [
+            ("scene", Part::Value(json!(self.scene.file))),
+            ("title", Part::Value(json!(fr.title))),
+            ("output", Part::Value(json!(output))),
+            ("system", Part::Value(json!(system))),
+            ("solver", Part::Value(json!(solver))),
+            ("status", Part::Value(json!(self.solution.status.as_str()))),
+            ("collapse_load", Part::Value(json!(self.reading.collapse_load().map(num).unwrap_or(Value::Null)))),
+            ("model", Part::Value(json!(fr.model.as_str()))),
+            ("conventions", Part::Value(json!(match fr.model {
                 crate::model::Model::Planar => "bending moments sagging-positive in each element's axes (local y = member direction turned 90 degrees counter-clockwise); sign of a section = sign of its moment at yield (for a facet of a yield polygon: the sign of the normal's bending component; the facet and its unit normal in (M/Mp, N/Np) are given); end = end of the element the section sits at; affine values are [base, slope] with value = base + slope * lambda",
                 crate::model::Model::Grillage => "grillage in the x-y plane: z translation, right-handed rotations rx, ry; element axes x' along the member, y' turned 90 degrees counter-clockwise; bending moment about y' dual to the hinge rotation (from end: -(theta_a - psi), to end: theta_b - psi, psi = -(w_b - w_a)/h), torque right-handed about x'; each yield mode is a facet of the inscribed polygon in (M/Mp, T/Tp), given with its unit normal; sign = sign of the normal's bending component; affine values are [base, slope] with value = base + slope * lambda",
-            },
-            "breakpoints": breakpoints,
-            "hinges": hinges,
-            "intervals": intervals,
-            "moments_at_breakpoints": moments,
-            "targets": self.targets_json(),
-            "response": {
+            }))),
+            ("breakpoints", breakpoints),
+            ("hinges", Part::Value(json!(hinges))),
+            ("intervals", intervals),
+            ("moments_at_breakpoints", moments),
+            ("targets", Part::Value(json!(self.targets_json()))),
+            ("response", Part::Value(json!({
                 "history": t.history.describe(),
                 "method": t.method,
                 "times": t.times,
                 "lambda": t.lambda,
                 "nodes": nodes,
-            },
-        }))
+            }))),
+        ] {
+            report.insert_part(key, part);
+        }
+        Ok(report)
     }
 
     /// Per member: `from`, `to` and `along` (`[s, value]` at every element end).
@@ -1131,4 +1153,60 @@ impl Analysis {
 /// Formats a number compactly (six significant digits).
 pub fn format_number(x: f64) -> String {
     fmt_g(x)
+}
+
+/// One top-level entry of a [`JsonReport`]: a value, or a sequence whose
+/// elements are built one at a time as they are written.
+enum Part<'a> {
+    Value(Value),
+    Seq(Box<dyn Fn() -> Box<dyn Iterator<Item = Value> + 'a> + 'a>),
+}
+
+impl<'a> Part<'a> {
+    fn seq<I: Iterator<Item = Value> + 'a>(f: impl Fn() -> I + 'a) -> Self {
+        Part::Seq(Box::new(move || Box::new(f())))
+    }
+}
+
+impl serde::Serialize for Part<'_> {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        match self {
+            Part::Value(v) => v.serialize(s),
+            Part::Seq(f) => s.collect_seq(f()),
+        }
+    }
+}
+
+/// The JSON report of an analysis, written part by part
+/// ([`Analysis::json_report`]): `serde_json::to_writer` on it writes the
+/// document of [`Analysis::to_json_selected`] holding one breakpoint, interval
+/// or moment diagram at a time.
+pub struct JsonReport<'a> {
+    /// Sorted by key, as `serde_json::Map` (a `BTreeMap`) writes them.
+    parts: Vec<(String, Part<'a>)>,
+}
+
+impl<'a> JsonReport<'a> {
+    /// Adds (or replaces) a top-level key.
+    pub fn insert(&mut self, key: &str, value: Value) {
+        self.insert_part(key, Part::Value(value));
+    }
+
+    fn insert_part(&mut self, key: &str, part: Part<'a>) {
+        match self.parts.binary_search_by(|(k, _)| k.as_str().cmp(key)) {
+            Ok(i) => self.parts[i].1 = part,
+            Err(i) => self.parts.insert(i, (key.to_string(), part)),
+        }
+    }
+}
+
+impl serde::Serialize for JsonReport<'_> {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        use serde::ser::SerializeMap;
+        let mut map = s.serialize_map(Some(self.parts.len()))?;
+        for (k, v) in &self.parts {
+            map.serialize_entry(k, v)?;
+        }
+        map.end()
+    }
 }

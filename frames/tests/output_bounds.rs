@@ -127,3 +127,29 @@ fn a_small_scene_reports_everything() {
     let nodes = a.scene.frame.nodes.len();
     assert_eq!((acc, series), (nodes, nodes));
 }
+
+/// The report written part by part (`Analysis::json_report`, what `frames run
+/// --json` streams) gives the bytes of the document built whole, compact and
+/// pretty, with the default and the full selection, and with keys added.
+#[test]
+fn streamed_json_equals_the_document_built_whole() {
+    for (a, sel) in [
+        (cantilever(8), OutputSelection::all()),
+        (cantilever(300), OutputSelection::default_for(&cantilever(300))),
+        (cantilever(300), OutputSelection::all()),
+    ] {
+        let mut report = a.json_report(&sel).unwrap();
+        let mut whole = a.to_json_selected(&sel).unwrap();
+        // keys that sort before, between and after the report's own
+        for (k, v) in [("aaa", 1), ("plcp_valid_up_to_lambda", 2), ("zzz", 3)] {
+            report.insert(k, v.into());
+            whole[k] = v.into();
+        }
+        let streamed = serde_json::to_vec(&report).unwrap();
+        assert_eq!(streamed, serde_json::to_vec(&whole).unwrap());
+        let pretty = serde_json::to_vec_pretty(&report).unwrap();
+        assert_eq!(pretty, serde_json::to_vec_pretty(&whole).unwrap());
+        // written twice, the same (every lazy part starts over)
+        assert_eq!(serde_json::to_vec(&report).unwrap(), streamed);
+    }
+}

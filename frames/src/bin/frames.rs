@@ -175,7 +175,19 @@ fn run(cli: Cli) -> Result<(), FramesError> {
                 ..AnalysisOptions::default()
             };
             progress.message("tracing the path of system (9)");
-            let mut analysis = Analysis::run(scene, &options)?;
+            // per segment: where the trace stands (only drawn on a terminal)
+            let watch = plcp::progress::enabled(cli.quiet).then(|| {
+                let bar = progress.clone();
+                let w: frames::solve::Watch =
+                    std::rc::Rc::new(std::cell::RefCell::new(move |t: &frames::solve::Tick| {
+                        bar.message(&format!(
+                            "tracing system (9): Lambda = {:.6e}, {} pivots, {} breakpoints",
+                            t.lambda, t.pivots, t.breakpoints
+                        ))
+                    }));
+                w
+            });
+            let mut analysis = Analysis::run_watched(scene, &options, watch)?;
             progress.finish();
             let valid = frames::timestep::plcp_valid_until(&analysis);
             if let Some((lambda, t)) = valid {
@@ -216,20 +228,21 @@ fn run(cli: Cli) -> Result<(), FramesError> {
                 }
                 let mut doc =
                     analysis
-                        .to_json_selected(&sel)
+                        .json_report(&sel)
                         .map_err(|message| FramesError::Scene {
                             file: analysis.scene.file.clone(),
                             line: 0,
                             key: "--nodes".into(),
                             message,
                         })?;
-                if let (Some((lambda, _)), Some(obj)) = (valid, doc.as_object_mut()) {
-                    obj.insert("plcp_valid_up_to_lambda".into(), lambda.into());
+                if let Some((lambda, _)) = valid {
+                    doc.insert("plcp_valid_up_to_lambda", lambda.into());
                     if let Some(c) = &analysis.time_stepping {
-                        obj.insert("time_stepping".into(), c.to_json(&analysis));
+                        doc.insert("time_stepping", c.to_json(&analysis));
                     }
                 }
-                // written as it is serialised, not built as one string
+                // written as it is serialised, one entry at a time, not built
+                // as one document
                 let mut w = std::io::BufWriter::new(std::io::stdout().lock());
                 // pretty for small scenes, compact (about 40 % of the size) for large
                 let _ = if analysis.scene.frame.nodes.len() <= frames::report::SMALL_SCENE {
