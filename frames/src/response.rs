@@ -35,7 +35,7 @@ pub struct IntervalResponse {
     pub lambda_from: f64,
     /// End (`f64::INFINITY` when unbounded).
     pub lambda_to: f64,
-    /// Accelerations per node, per component (by [`crate::Component::index`]:
+    /// Accelerations per node, per component (by [`crate::model::Component::index`]:
     /// `[x, y, rz, z, rx, ry]`), affine in `Lambda` (zero for supported and
     /// left-out components and those not of the model).
     pub accelerations: Vec<[Affine; 6]>,
@@ -107,9 +107,9 @@ pub struct TimeResponse {
     pub times: Vec<f64>,
     /// `lambda(t)`.
     pub lambda: Vec<f64>,
-    /// Per time, per node, by [`crate::Component::index`] (`[x, y, rz, z, rx, ry]`).
+    /// Per time, per node, by [`crate::model::Component::index`] (`[x, y, rz, z, rx, ry]`).
     pub displacement: Vec<Vec<[f64; 6]>>,
-    /// Per time, per node, by [`crate::Component::index`].
+    /// Per time, per node, by [`crate::model::Component::index`].
     pub velocity: Vec<Vec<[f64; 6]>>,
 }
 

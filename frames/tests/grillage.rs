@@ -266,7 +266,9 @@ fn compatibility_matches_3d_vector_kinematics() {
             let (e, which) = match *f {
                 MemberForce::Moment(k) => (sys.sections[k].element, k % 2),
                 MemberForce::Torque(e) => (e, 2),
-                MemberForce::Axial(_) => panic!("an axial force in a grillage"),
+                MemberForce::Axial(_) | MemberForce::Moment2(_) => {
+                    panic!("an axial force or a second moment in a grillage")
+                }
             };
             let el = &fr.elements[e];
             let (a, b) = (el.from, el.to);
