@@ -246,8 +246,15 @@ impl Analysis {
                 }
             }
         }
+        let space = self.scene.frame.model == crate::model::Model::Space;
         seen.iter()
             .map(|(c, k)| {
+                if space {
+                    return format!(
+                        "(M2^2 + M3^2)/Mp^2 + (T/Tp)^2 <= 1: inscribed polyhedron of {} facets ({k} longitudes, the polygon's latitudes; vertices on the surface), one yield mode per facet",
+                        k * k / 2
+                    );
+                }
                 format!(
                     "{}: inscribed polygon of {k} facets (vertices on the curve, the axis points among them), one yield mode per facet",
                     c.describe()
