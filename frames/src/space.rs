@@ -283,7 +283,8 @@ pub fn element_axes(e1: [f64; 3], v: Option<[f64; 3]>) -> Result<[[f64; 3]; 3], 
     let along = dot(v, e1);
     let n = sub(v, [along * e1[0], along * e1[1], along * e1[2]]);
     let (nv, nn) = (norm(v), norm(n));
-    if !(nv > 0.0) || !(nn > 1e-6 * nv) {
+    let ok = nv > 0.0 && nn > 1e-6 * nv;
+    if !ok {
         return Err(format!(
             "the orientation vector {v:?} is zero or along the member: give a direction across it (the element's local e3)"
         ));
