@@ -67,7 +67,11 @@
 //! **Space scenes.** `model = "space"`: nodes take `z` too, supports fix any of
 //! `"x", "y", "z", "rx", "ry", "rz"`, loads are `fx, fy, fz, mx, my, mz`, every
 //! member needs `plastic_torque`; the scene is solved as planar or grillage in
-//! the plane of its nodes, as its loads need ([`crate::space`]; no arcs yet).
+//! the plane of its nodes, as its loads need, else as the general space model
+//! (six components per node, the yield polyhedron; [`crate::space`]; no arcs
+//! yet). A member may give `orientation = [vx, vy, vz]`: its elements' local
+//! `e3` is the part of that vector across the member (default `z`, `x` for a
+//! vertical member; [`crate::space::element_axes`]); a key of space scenes only.
 //!
 //! **Models.** `model = "planar"` (the default: every file without the key is
 //! planar, as before) or `model = "grillage"`. In a grillage the frame lies in

@@ -834,3 +834,62 @@ fn time_stepping_follows_the_path_on_the_3d_run() {
     assert!(errors[1] < errors[0], "{errors:?}");
     assert!(errors[1] < 2e-2, "{errors:?}");
 }
+
+/// The general model's keys and their errors: `orientation` (space scenes
+/// only, across the member), `plastic_axial` (refused in the general model),
+/// a rotation fixed alone at a support (any of the six may be).
+#[test]
+fn general_space_keys_and_errors() {
+    let src = pipe_whip("space-run.toml");
+    let err = |s: &str| Scene::from_toml(s, "s.toml").unwrap_err().to_string();
+    let with = |key: &str| {
+        src.replacen(
+            "mass_per_length = 1.0\n",
+            &format!("mass_per_length = 1.0\n{key}\n"),
+            1,
+        )
+    };
+    // the default axes of AB (along x) are the planar element's
+    let a = Scene::from_toml(&src, "s.toml").unwrap();
+    assert_eq!(
+        a.frame.elements[0].axes,
+        [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]]
+    );
+    let turned = Scene::from_toml(&with("orientation = [0.0, -1.0, 0.0]"), "s.toml").unwrap();
+    assert_eq!(turned.frame.elements[0].axes[2], [0.0, -1.0, 0.0]);
+    let e = err(&with("orientation = [2.0, 0.0, 0.0]"));
+    assert!(
+        e.contains("orientation") && e.contains("along the member"),
+        "{e}"
+    );
+    let e = err(&with("orientation = [1.0, 0.0]"));
+    assert!(e.contains("three finite numbers"), "{e}");
+    let e = err(&with("plastic_axial = 4.0"));
+    assert!(
+        e.contains("plastic_axial") && e.contains("general space model"),
+        "{e}"
+    );
+    let planar = std::fs::read_to_string(format!(
+        "{}/../scenes/cantilever.toml",
+        env!("CARGO_MANIFEST_DIR")
+    ))
+    .unwrap()
+    .replacen(
+        "plastic_moment = 1.0\n",
+        "plastic_moment = 1.0\norientation = [0.0, 0.0, 1.0]\n",
+        1,
+    );
+    let e = err(&planar);
+    assert!(e.contains("space scenes only"), "{e}");
+    // a support may fix any of the six: here only the rotations at the far end
+    let fixed = src.replace(
+        "[[load]]",
+        "[[support]]\nnode = \"G\"\nfix = [\"rx\", \"ry\"]\n\n[[load]]",
+    );
+    let s = Scene::from_toml(&fixed, "s.toml").unwrap();
+    let g = s.frame.node_index("G").unwrap();
+    assert_eq!(
+        s.frame.nodes[g].fixed,
+        [false, false, false, false, true, true]
+    );
+}
