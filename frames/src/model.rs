@@ -68,8 +68,11 @@
 //! `"x", "y", "z", "rx", "ry", "rz"`, loads are `fx, fy, fz, mx, my, mz`, every
 //! member needs `plastic_torque`; the scene is solved as planar or grillage in
 //! the plane of its nodes, as its loads need, else as the general space model
-//! (six components per node, the yield polyhedron; [`crate::space`]; no arcs
-//! yet). A member may give `orientation = [vx, vy, vz]`: its elements' local
+//! (six components per node, the yield polyhedron; [`crate::space`]). An
+//! `[[arc]]` of a space scene takes `centre = [x, y, z]`, optional `normal =
+//! [nx, ny, nz]` (its plane, default z; angles counter-clockwise about it)
+//! and `reference = [rx, ry, rz]` (the direction of angle 0, its part in the
+//! plane; default the plane's direction nearest x, or y). A member may give `orientation = [vx, vy, vz]`: its elements' local
 //! `e3` is the part of that vector across the member (default `z`, `x` for a
 //! vertical member; [`crate::space::element_axes`]); a key of space scenes only.
 //!
@@ -425,9 +428,53 @@ struct RawArc {
     plastic_axial: Option<Spanned<f64>>,
     facets: Option<Spanned<i64>>,
     mass_per_length: Option<Spanned<f64>>,
+    normal: Option<Spanned<Vec<f64>>>,
+    reference: Option<Spanned<Vec<f64>>>,
     /// An annotation (any TOML value), read and ignored.
     #[serde(default, rename = "comment")]
     _comment: Option<IgnoredAny>,
+}
+
+impl RawArc {
+    /// A space arc's centre, unit normal, in-plane axes and points, if its
+    /// keys are valid (else the arc's own checks report them).
+    fn space_points(&self) -> Option<Vec<[f64; 3]>> {
+        let c = self.centre.get_ref();
+        if c.len() != 3 || c.iter().any(|v| !v.is_finite()) {
+            return None;
+        }
+        let n = match &self.normal {
+            Some(n) => crate::space::unit_of(n.get_ref())?,
+            None => [0.0, 0.0, 1.0],
+        };
+        let (r, a0, a1) = (
+            *self.radius.get_ref(),
+            *self.start_angle.get_ref(),
+            *self.end_angle.get_ref(),
+        );
+        let k = usize::try_from(*self.elements.get_ref()).ok()?;
+        if !(r > 0.0 && r.is_finite() && a0.is_finite() && a1.is_finite()) || k == 0 || k > 100_000
+        {
+            return None;
+        }
+        let reference = match &self.reference {
+            Some(g) => Some(crate::space::unit_of(g.get_ref())?),
+            None => None,
+        };
+        let axes = crate::space::arc_axes(n, reference)?;
+        Some(
+            (0..=k)
+                .map(|i| {
+                    crate::space::arc_point(
+                        [c[0], c[1], c[2]],
+                        r,
+                        axes,
+                        a0 + (a1 - a0) * i as f64 / k as f64,
+                    )
+                })
+                .collect(),
+        )
+    }
 }
 
 #[derive(Deserialize)]
@@ -710,7 +757,7 @@ impl Ctx<'_> {
 }
 
 /// Adds a member over a chain of nodes, one element per link with its
-/// `(length, cos, sin)` (and its axes: `None` for the planar axes of
+/// `(length, cos, sin)` (and its axes: none given for the planar axes of
 /// `(cos, sin)`), lumping `mu h / 2` to each element end.
 #[allow(clippy::too_many_arguments)]
 fn push_member(
@@ -718,14 +765,14 @@ fn push_member(
     id: String,
     chain: Vec<usize>,
     dirs: &[(f64, f64, f64)],
-    axes: Option<[[f64; 3]; 3]>,
+    axes: &[[[f64; 3]; 3]],
     mp: f64,
     interaction: Option<Interaction>,
     mu: f64,
 ) {
     let mi = frame.members.len();
     let first = frame.elements.len();
-    for (w, &(h, c, s)) in chain.windows(2).zip(dirs) {
+    for (k, (w, &(h, c, s))) in chain.windows(2).zip(dirs).enumerate() {
         frame.elements.push(Element {
             member: mi,
             from: w[0],
@@ -735,7 +782,10 @@ fn push_member(
             sin: s,
             plastic_moment: mp,
             interaction,
-            axes: axes.unwrap_or([[c, s, 0.0], [-s, c, 0.0], [0.0, 0.0, 1.0]]),
+            axes: axes
+                .get(k)
+                .copied()
+                .unwrap_or([[c, s, 0.0], [-s, c, 0.0], [0.0, 0.0, 1.0]]),
         });
         let lump = 0.5 * mu * h;
         frame.nodes[w[0]].mass += lump;
@@ -943,12 +993,16 @@ impl Scene {
                 })
                 .filter(|l| l.0.iter().chain(&l.1).all(|v| v.is_finite()))
                 .collect::<Vec<_>>();
-            let points: Vec<[f64; 3]> = frame
+            let mut points: Vec<[f64; 3]> = frame
                 .nodes
                 .iter()
                 .zip(&zs)
                 .map(|(n, &z)| [n.x, n.y, z])
                 .collect();
+            // the arcs' points are part of the geometry whose plane is sought
+            for a in &raw.arc {
+                points.extend(a.get_ref().space_points().unwrap_or_default());
+            }
             let span = raw.model.as_ref().map_or(0..0, |m| m.span());
             if points.is_empty() {
                 return cx.err(span, "node", "the scene has no [[node]]");
@@ -1132,17 +1186,11 @@ impl Scene {
             } else {
                 None
             };
-            push_member(&mut frame, id, chain, &dirs, axes, mp, interaction, mu);
+            let axes: Vec<[[f64; 3]; 3]> = axes.map_or_else(Vec::new, |a| vec![a; n]);
+            push_member(&mut frame, id, chain, &dirs, &axes, mp, interaction, mu);
         }
         for arc in &raw.arc {
             let r = arc.get_ref();
-            if space {
-                return cx.err(
-                    r.id.span(),
-                    "arc",
-                    "arcs are not available in space scenes yet: give the elbow as straight [[member]]s",
-                );
-            }
             let id = r.id.get_ref().trim().to_string();
             if id.is_empty() {
                 return cx.err(r.id.span(), "arc id", "must not be empty");
@@ -1155,27 +1203,104 @@ impl Scene {
                 );
             }
             let table = format!("arc \"{id}\"");
-            let (mp, interaction, mu) = cx.strength(
-                model,
-                &table,
-                &r.id,
-                Keys {
-                    plastic_moment: &r.plastic_moment,
-                    plastic_torque: r.plastic_torque.as_ref(),
-                    plastic_axial: r.plastic_axial.as_ref(),
-                    facets: r.facets.as_ref(),
-                    mass_per_length: r.mass_per_length.as_ref(),
-                },
-                default_facets,
-            )?;
+            let mut keys = Keys {
+                plastic_moment: &r.plastic_moment,
+                plastic_torque: r.plastic_torque.as_ref(),
+                plastic_axial: r.plastic_axial.as_ref(),
+                facets: r.facets.as_ref(),
+                mass_per_length: r.mass_per_length.as_ref(),
+            };
+            if space {
+                let Some(tp) = r.plastic_torque.as_ref() else {
+                    return cx.err(
+                        r.id.span(),
+                        format!("{table} plastic_torque"),
+                        "an arc of a space scene needs plastic_torque (the plastic torque Tp of the pipe)",
+                    );
+                };
+                cx.positive(tp, format!("{table} plastic_torque"))?;
+                match model {
+                    Model::Planar => {
+                        keys.plastic_torque = None;
+                        if keys.plastic_axial.is_none() {
+                            keys.facets = None;
+                        }
+                    }
+                    Model::Grillage => keys.plastic_axial = None,
+                    Model::Space => {}
+                }
+            }
+            let (mp, interaction, mu) = cx.strength(model, &table, &r.id, keys, default_facets)?;
             let centre = r.centre.get_ref();
-            if centre.len() != 2 || centre.iter().any(|v| !v.is_finite() || v.abs() > 1e100) {
+            let dims = if space { 3 } else { 2 };
+            if centre.len() != dims || centre.iter().any(|v| !v.is_finite() || v.abs() > 1e100) {
+                let what = if space {
+                    "three finite numbers [x, y, z] (model = \"space\")"
+                } else {
+                    "two finite numbers [x, y]"
+                };
                 return cx.err(
                     r.centre.span(),
                     format!("{table} centre"),
-                    format!("must be two finite numbers [x, y], got {centre:?}"),
+                    format!("must be {what}, got {centre:?}"),
                 );
             }
+            // a space arc: its plane's normal (global), in-plane axes
+            let normal = match (&r.normal, space) {
+                (Some(n), false) => {
+                    return cx.err(
+                        n.span(),
+                        format!("{table} normal"),
+                        "a key of space scenes only (model = \"space\")",
+                    )
+                }
+                (Some(n), true) => match crate::space::unit_of(n.get_ref()) {
+                    Some(u) => u,
+                    None => {
+                        return cx.err(
+                            n.span(),
+                            format!("{table} normal"),
+                            format!(
+                                "must be three finite numbers [nx, ny, nz], not all zero, got {:?}",
+                                n.get_ref()
+                            ),
+                        )
+                    }
+                },
+                (None, _) => [0.0, 0.0, 1.0],
+            };
+            let reference = match (&r.reference, space) {
+                (Some(g), false) => {
+                    return cx.err(
+                        g.span(),
+                        format!("{table} reference"),
+                        "a key of space scenes only (model = \"space\")",
+                    )
+                }
+                (Some(g), true) => match crate::space::unit_of(g.get_ref()) {
+                    Some(u) => Some((u, g.span())),
+                    None => {
+                        return cx.err(
+                            g.span(),
+                            format!("{table} reference"),
+                            format!(
+                                "must be three finite numbers, not all zero, got {:?}",
+                                g.get_ref()
+                            ),
+                        )
+                    }
+                },
+                (None, _) => None,
+            };
+            let Some(arc_axes) = crate::space::arc_axes(normal, reference.as_ref().map(|g| g.0))
+            else {
+                let span = reference.map_or(r.id.span(), |g| g.1);
+                return cx.err(
+                    span,
+                    format!("{table} reference"),
+                    "the reference direction is along the normal: give one in the arc's plane",
+                );
+            };
             let radius = cx.positive(&r.radius, format!("{table} radius"))?;
             let a0 = cx.finite(&r.start_angle, format!("{table} start_angle"))?;
             let a1 = cx.finite(&r.end_angle, format!("{table} end_angle"))?;
@@ -1188,10 +1313,22 @@ impl Scene {
                 );
             }
             let n = cx.element_count(&r.elements, &format!("{table} elements"))?;
+            let general = model == Model::Space;
+            let reduction = frame.reduction.clone();
             let point = |k: usize| {
+                if space {
+                    let angle = a0 + sweep * k as f64 / n as f64;
+                    let c = [centre[0], centre[1], centre[2]];
+                    let p = crate::space::arc_point(c, radius, arc_axes, angle);
+                    if general {
+                        return (p[0], p[1], p[2]);
+                    }
+                    let l = reduction.as_ref().map_or(p, |r| r.to_local(p));
+                    return (l[0], l[1], 0.0);
+                }
                 let t = (a0 + sweep * k as f64 / n as f64).to_radians();
                 let (s, c) = t.sin_cos();
-                (centre[0] + radius * c, centre[1] + radius * s)
+                (centre[0] + radius * c, centre[1] + radius * s, 0.0)
             };
             let mut chain = Vec::with_capacity(n + 1);
             for k in 0..=n {
@@ -1215,8 +1352,12 @@ impl Scene {
                         }
                     };
                     let nd = &frame.nodes[i];
-                    if (nd.x - p.0).hypot(nd.y - p.1) > 1e-9 * radius.max(p.0.abs()).max(p.1.abs())
-                    {
+                    let off = if general {
+                        (nd.x - p.0).hypot(nd.y - p.1).hypot(nd.z - p.2)
+                    } else {
+                        (nd.x - p.0).hypot(nd.y - p.1)
+                    };
+                    if off > 1e-9 * radius.max(p.0.abs()).max(p.1.abs()).max(p.2.abs()) {
                         return cx.err(
                             node.span(),
                             format!("{table} {key}"),
@@ -1237,7 +1378,7 @@ impl Scene {
                         &mut frame,
                         &mut ids,
                         format!("{id}.{k}"),
-                        (p.0, p.1, 0.0),
+                        p,
                         end.is_none(),
                         r.elements.span(),
                         &format!("{table} elements"),
@@ -1246,10 +1387,24 @@ impl Scene {
                 }
             }
             let mut dirs = Vec::with_capacity(n);
+            let mut axes = Vec::new();
             for w in chain.windows(2) {
                 let (a, b) = (&frame.nodes[w[0]], &frame.nodes[w[1]]);
-                let (dx, dy) = (b.x - a.x, b.y - a.y);
-                let h = dx.hypot(dy);
+                let (dx, dy, dz) = (b.x - a.x, b.y - a.y, b.z - a.z);
+                let h = if general {
+                    dx.hypot(dy).hypot(dz)
+                } else {
+                    dx.hypot(dy)
+                };
+                if general && h > 0.0 && h.is_finite() {
+                    // e3 the arc's normal: bending in its plane is about e3
+                    match crate::space::element_axes([dx / h, dy / h, dz / h], Some(normal)) {
+                        Ok(e) => axes.push(e),
+                        Err(why) => {
+                            return cx.err(r.elements.span(), format!("{table} elements"), why)
+                        }
+                    }
+                }
                 if !(h > 0.0 && h.is_finite()) {
                     return cx.err(
                         r.elements.span(),
@@ -1259,7 +1414,7 @@ impl Scene {
                 }
                 dirs.push((h, dx / h, dy / h));
             }
-            push_member(&mut frame, id, chain, &dirs, None, mp, interaction, mu);
+            push_member(&mut frame, id, chain, &dirs, &axes, mp, interaction, mu);
         }
         let node_ref = |s: &Spanned<String>, table: &str| -> Result<usize, FramesError> {
             match ids.get(s.get_ref().trim()) {

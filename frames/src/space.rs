@@ -35,14 +35,22 @@
 //!   (`e3`, about `e1`, about `e2`), and the report names the axes;
 //! - the loads: a component smaller than `1e-12` of the largest force (or
 //!   moment) is rounding; loads in the plane give the planar model, normal
-//!   to it the grillage; both: the general space model, not built yet (an
-//!   error that says so);
+//!   to it the grillage; both (or nodes off one plane): the general space
+//!   model, and the report says why;
 //! - supports: a fixed set of global translations (rotations) must be
 //!   spanned by the plane's axes (fix `x, y, z` together, or only axes that
 //!   are the plane's); the components of the other model are left out.
 //!
 //! Every member needs `plastic_torque` (a pipe); `plastic_axial` is optional
-//! as in a planar scene. Arcs are not available in space scenes yet.
+//! as in a planar scene (refused in the general model). An arc's points
+//! count in the plane check (`arc_axes` gives its in-plane axes).
+//!
+//! **The general space model** ([`crate::kind::Model::Space`]): six
+//! components per node in global axes, element axes from
+//! [`element_axes`], each section on the yield polyhedron
+//! ([`crate::yield_surface::Polyhedron`]); the rows of `A` are in
+//! [`crate::kind`]. `ReadOptions { reduce_space: false }` assembles every
+//! space scene so (the check of the reduction).
 
 use crate::kind::Model;
 
@@ -264,6 +272,52 @@ pub(crate) fn general(points: &[[f64; 3]], reason: &str) -> Result<Reduction, St
         global_axes: true,
         reason: reason.into(),
     })
+}
+
+/// The in-plane axes `(u, v)` of an arc in the plane with normal `n`
+/// (unit): `u` the plane's direction nearest global `x` (`y` when `n` is
+/// within about 25 degrees of `x`), `v = n x u`; exactly `x, y` when `n` is
+/// `+z`, so an arc of the x-y plane has the planar arc's points bit for bit.
+/// Angles run counter-clockwise about `n` from `u`.
+/// With `reference` (an arc's `reference` key) `u` is its part in the plane
+/// instead; `None` when that part is zero.
+pub(crate) fn arc_axes(n: [f64; 3], reference: Option<[f64; 3]>) -> Option<([f64; 3], [f64; 3])> {
+    let g = match reference {
+        Some(g) => g,
+        None if n[0] == 0.0 && n[1] == 0.0 && n[2] > 0.0 => {
+            return Some(([1.0, 0.0, 0.0], [0.0, 1.0, 0.0]))
+        }
+        None if n[0].abs() < 0.9 => [1.0, 0.0, 0.0],
+        None => [0.0, 1.0, 0.0],
+    };
+    let gn = dot(g, n);
+    let w = sub(g, [gn * n[0], gn * n[1], gn * n[2]]);
+    if !(norm(w) > 1e-6 * norm(g)) {
+        return None;
+    }
+    let u = unit(w);
+    Some((u, cross(n, u)))
+}
+
+/// The point of an arc (centre `c`, radius `r`, in-plane axes `u, v`) at
+/// `angle` degrees.
+pub(crate) fn arc_point(c: [f64; 3], r: f64, (u, v): ([f64; 3], [f64; 3]), angle: f64) -> [f64; 3] {
+    let (s, co) = angle.to_radians().sin_cos();
+    [
+        c[0] + r * (co * u[0] + s * v[0]),
+        c[1] + r * (co * u[1] + s * v[1]),
+        c[2] + r * (co * u[2] + s * v[2]),
+    ]
+}
+
+/// The unit vector along `v`, if `v` is finite and not zero.
+pub(crate) fn unit_of(v: &[f64]) -> Option<[f64; 3]> {
+    if v.len() != 3 || v.iter().any(|x| !x.is_finite() || x.abs() > 1e100) {
+        return None;
+    }
+    let w = [v[0], v[1], v[2]];
+    let n = norm(w);
+    (n > 0.0).then(|| unit(w))
 }
 
 /// The axes `[e1, e2, e3]` of an element of a general space frame with unit
