@@ -292,7 +292,8 @@ pub(crate) fn arc_axes(n: [f64; 3], reference: Option<[f64; 3]>) -> Option<([f64
     };
     let gn = dot(g, n);
     let w = sub(g, [gn * n[0], gn * n[1], gn * n[2]]);
-    if !(norm(w) > 1e-6 * norm(g)) {
+    let across = norm(w) > 1e-6 * norm(g);
+    if !across {
         return None;
     }
     let u = unit(w);
