@@ -189,6 +189,11 @@ impl Model {
             Model::Space => &["fx", "fy", "fz", "mx", "my", "mz"],
         }
     }
+    /// The load key of component `c` of this kind (`fx`, ..., `mz`).
+    pub fn load_key(self, c: Component) -> &'static str {
+        let k = self.components().iter().position(|&x| x == c);
+        k.map_or("", |k| self.load_keys()[k])
+    }
     /// The load keys of the other kind (errors in a scene of this kind).
     pub(crate) fn foreign_load_keys(self) -> &'static [&'static str] {
         match self {

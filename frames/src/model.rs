@@ -1595,7 +1595,7 @@ impl Scene {
             return Err(FramesError::Scene {
                 file: self.file.clone(),
                 line,
-                key: format!("load \"{}\" {}", n.id, self.frame.model.load_keys()[comp.index()]),
+                key: format!("load \"{}\" {}", n.id, self.frame.model.load_key(comp)),
                 message: format!(
                     "the load acts on a mechanism with no mass on it (node \"{}\", component {}): add a [[mass]] or mass_per_length, or a support",
                     n.id,

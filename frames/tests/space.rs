@@ -921,6 +921,10 @@ fn general_space_keys_and_errors() {
         s.frame.nodes[g].fixed,
         [false, false, false, false, true, true]
     );
+    // a load on a massless mechanism names the space load key (this
+    // indexed the three load keys by the six-slot index and panicked)
+    let e = err(&src.replace("mass_per_length = 1.0", "mass_per_length = 0.0"));
+    assert!(e.contains("load \"G\" fz") && e.contains("no mass"), "{e}");
 }
 
 /// `[[arc]]` in space (`centre = [x, y, z]`, `normal`): the arc scenes of
