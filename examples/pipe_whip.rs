@@ -19,7 +19,13 @@
 //!   in a vertical plane, the thrust along the broken riser, alone (`riser`,
 //!   in the tables and the time-stepping check) and with a restraint at the
 //!   elbow (`riser-restraint`); both are reduced to the planar model in their
-//!   plane automatically (the report says so).
+//!   plane automatically (the report says so);
+//! - a run in three dimensions (`space-run`): an L-shaped horizontal run (two
+//!   legs and a chorded elbow) and a second elbow turning it into a riser,
+//!   the thrust along the broken riser rising to a plateau; no plane holds
+//!   it, so it is the general space model (six components per node, the
+//!   yield polyhedron); alone and with a restraint at the riser's foot
+//!   (`space-restraint`).
 //!
 //! Units: radius or leg length 1, Mp = 1, Tp / Mp = pi / (2 sqrt 3) (thin-walled
 //! pipe, von Mises), mass per length 1, lambda(t) = t.
@@ -96,6 +102,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         "semicircle",
         "straight",
         "riser",
+        "space-run",
     ];
     println!("==== the scenes ====");
     println!(
@@ -484,6 +491,12 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         &out,
         "riser-restraint",
         "D along the broken riser (-z), target at the elbow's end C along -z",
+    )?;
+    restraint(
+        &scenes,
+        &out,
+        "space-restraint",
+        "G along the broken riser (-z) of the 3D run, target at the riser's foot F along -z",
     )?;
     println!("reports and plots in {}", out.display());
     Ok(())

@@ -69,7 +69,7 @@
 use crate::kernel::null_space;
 use crate::kind::ElementRow;
 use crate::model::{Component, Frame, Model};
-use crate::yield_surface::Polygon;
+use crate::yield_surface::{Polygon, Polyhedron};
 use faer::{Col, Mat};
 use plcp::{Plcp, PlcpError, Scalar};
 
@@ -140,15 +140,19 @@ pub struct YieldMode {
     pub facet: Option<FacetMode>,
 }
 
-/// The facet of a yield polygon a mode stands for.
+/// The facet of a yield polygon (or polyhedron) a mode stands for.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct FacetMode {
     /// Index of the facet (counter-clockwise from the first quadrant).
     pub index: usize,
-    /// Number of facets of the polygon.
+    /// Number of facets of the polygon (polyhedron).
     pub count: usize,
-    /// Unit normal `(n_m, n_F)`.
+    /// Unit normal `(n_m, n_F)`; for a facet of the space polyhedron the
+    /// signed bending part `(+-|(n_m2, n_m3)|, n_t)`.
     pub normal: [f64; 2],
+    /// A facet of the space polyhedron ([`crate::yield_surface::Polyhedron`]):
+    /// its unit normal `(n_m2, n_m3, n_t)` in `(M2/Mp, M3/Mp, T/Tp)`.
+    pub normal3: Option<[f64; 3]>,
 }
 
 /// A generalised coordinate: one unsupported component of one node.
@@ -169,8 +173,12 @@ pub enum MemberForce {
     /// Axial force (tension positive) of a planar element: the reaction of
     /// inextensibility, or a yield force where the member asks for the interaction.
     Axial(usize),
-    /// Torque of a grillage element (right-handed about the element's axis).
+    /// Torque of a grillage or space element (right-handed about the element's axis).
     Torque(usize),
+    /// The bending moment about the element's `e2` axis at a section of a
+    /// space element (index into [`System::sections`]); [`MemberForce::Moment`]
+    /// is then the one about `e3`.
+    Moment2(usize),
 }
 
 /// Sizes of system (9).
@@ -294,11 +302,11 @@ fn full_blocks(frame: &Frame) -> Full {
     let model = frame.model;
     let comps = model.components();
     let mut coords = Vec::new();
-    let mut index = vec![[None; 3]; frame.nodes.len()];
+    let mut index = vec![[None; 6]; frame.nodes.len()];
     let mut supported = Vec::new();
     let mut loads_on_supports = Vec::new();
     for (i, n) in frame.nodes.iter().enumerate() {
-        for c in comps {
+        for &c in comps {
             if n.fixed[c.index()] {
                 supported.push((i, c));
                 if n.load[c.index()] != 0.0 {
@@ -326,10 +334,11 @@ fn full_blocks(frame: &Frame) -> Full {
             });
         }
     }
-    // forces: the moments of all sections, then the axial force or torque of each element
-    let mut forces: Vec<MemberForce> = (0..2 * ne).map(MemberForce::Moment).collect();
-    forces.extend((0..ne).map(|e| model.second_force(e)));
-    let mut a: Vec<Vec<(usize, f64)>> = vec![Vec::new(); 3 * ne];
+    // forces: the moments of all sections, then the axial force or torque of
+    // each element (space: then the moments about e2, the axial forces)
+    let nr = model.forces_per_element() * ne;
+    let forces: Vec<MemberForce> = (0..nr).map(|r| model.force_of_row(r, ne)).collect();
+    let mut a: Vec<Vec<(usize, f64)>> = vec![Vec::new(); nr];
     for (e, el) in frame.elements.iter().enumerate() {
         let ia = index[el.from];
         let ib = index[el.to];
@@ -344,15 +353,7 @@ fn full_blocks(frame: &Frame) -> Full {
                 }
             }
         };
-        let (rf, rt, rn) = (2 * e, 2 * e + 1, 2 * ne + e);
-        model.element_rows(el, ia, ib, &mut |row, j, v| {
-            let r = match row {
-                ElementRow::From => rf,
-                ElementRow::To => rt,
-                ElementRow::Second => rn,
-            };
-            add(r, j, v)
-        });
+        model.element_rows(el, ia, ib, &mut |row, j, v| add(row.row(e, ne), j, v));
     }
     // entries that cancelled (an element's two ends on one coordinate) are zeros
     for row in &mut a {
@@ -363,6 +364,48 @@ fn full_blocks(frame: &Frame) -> Full {
         let el = &frame.elements[sec.element];
         let mp = sec.plastic_moment;
         match el.interaction {
+            Some(it) if model == Model::Space => {
+                let polyhedron =
+                    Polyhedron::new(it.facets).expect("the scene checked the number of facets");
+                for (i, f) in polyhedron.facets().iter().enumerate() {
+                    // rounding of an exactly zero component is dropped: the
+                    // planes move by 1e-15 at most, the pattern stays exact
+                    let [n2, n3, nt] = f.normal.map(|v| if v.abs() <= 1e-14 { 0.0 } else { v });
+                    let mut column = Vec::with_capacity(3);
+                    for (row, v) in [
+                        (k, n3),
+                        (
+                            ElementRow::Second.row(sec.element, ne),
+                            nt * mp / it.capacity,
+                        ),
+                        (3 * ne + k, n2),
+                    ] {
+                        if v != 0.0 {
+                            column.push((row, v));
+                        }
+                    }
+                    let lead = if n3 != 0.0 { n3 } else { n2 };
+                    let bending = n2.hypot(n3);
+                    modes.push(ModeSpec {
+                        mode: YieldMode {
+                            section: k,
+                            sign: if lead >= 0.0 {
+                                Sign::Positive
+                            } else {
+                                Sign::Negative
+                            },
+                            facet: Some(FacetMode {
+                                index: i,
+                                count: it.facets * it.facets / 2,
+                                normal: [if lead >= 0.0 { bending } else { -bending }, nt],
+                                normal3: Some([n2, n3, nt]),
+                            }),
+                        },
+                        column,
+                        capacity: f.offset * mp,
+                    });
+                }
+            }
             None => {
                 for (sign, v) in [(Sign::Positive, 1.0), (Sign::Negative, -1.0)] {
                     modes.push(ModeSpec {
@@ -397,6 +440,7 @@ fn full_blocks(frame: &Frame) -> Full {
                                 index: i,
                                 count: it.facets,
                                 normal: f.normal,
+                                normal3: None,
                             }),
                         },
                         column,
@@ -499,8 +543,7 @@ pub fn massless_mechanism(frame: &Frame) -> Option<(usize, Component)> {
     // of the rows and columns that touch, found densely.
     let ne = frame.elements.len();
     let rigid_rows: Vec<usize> = (0..ne)
-        .filter(|&e| frame.model.second_force_is_rigid(&frame.elements[e]))
-        .map(|e| 2 * ne + e)
+        .filter_map(|e| frame.model.rigid_rows(&frame.elements[e], e, ne))
         .collect();
     let mut position = vec![None; f.coords.len()];
     for (k, &j) in massless.iter().enumerate() {
@@ -872,13 +915,22 @@ impl System {
             .position(|f| *f == MemberForce::Moment(section))
     }
 
-    /// Index of the kept member force holding the axial force or torque of
-    /// `section`'s element, if kept.
-    pub fn second_force_index(&self, section: usize) -> Option<usize> {
-        let e = self.sections[section].element;
+    /// Index of the kept member force holding the bending moment about `e2`
+    /// of `section` (space frames), if kept.
+    pub fn moment2_index(&self, section: usize) -> Option<usize> {
         self.forces
             .iter()
-            .position(|f| *f == MemberForce::Axial(e) || *f == MemberForce::Torque(e))
+            .position(|f| *f == MemberForce::Moment2(section))
+    }
+
+    /// Index of the kept member force holding the axial force or torque of
+    /// `section`'s element, if kept (space: the torque).
+    pub fn second_force_index(&self, section: usize) -> Option<usize> {
+        let e = self.sections[section].element;
+        self.forces.iter().position(|f| match self.model {
+            Model::Space => *f == MemberForce::Torque(e),
+            _ => *f == MemberForce::Axial(e) || *f == MemberForce::Torque(e),
+        })
     }
 }
 
@@ -996,7 +1048,7 @@ fx = 1.0
         // a rigid-body rotation of the whole unsupported frame deforms nothing
         let mut f = scene(PORTAL).frame;
         for n in &mut f.nodes {
-            n.fixed = [false; 3];
+            n.fixed = [false; 6];
         }
         let s = System::assemble(&f);
         let q: Vec<f64> = s

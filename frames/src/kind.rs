@@ -1,9 +1,10 @@
-//! One place that knows a model kind: what differs between a planar frame and
-//! a grillage (and what a space scene is reduced to, see [`crate::space`]).
+//! One place that knows a model kind: what differs between a planar frame, a
+//! grillage and a general space frame (and what a space scene is reduced to,
+//! see [`crate::space`]).
 //!
 //! A kind fixes
 //!
-//! - the three nodal components (`x, y, rz` or `z, rx, ry`) and their load keys;
+//! - the nodal components (`x, y, rz`, `z, rx, ry` or all six) and their load keys;
 //! - the second member force of an element (axial force or torque) and the
 //!   strength key that couples it with bending in the yield polygon
 //!   (`plastic_axial`, optional, or `plastic_torque`, required);
@@ -20,7 +21,7 @@ use crate::assemble::MemberForce;
 use crate::model::{Element, Node};
 use crate::yield_surface::Curve;
 
-/// The structural model of a scene: which three components a node has.
+/// The structural model of a scene: which components a node has.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 pub enum Model {
     /// In-plane frame: nodes move in x and y and rotate about z; members carry
@@ -30,6 +31,11 @@ pub enum Model {
     /// Grillage: the frame lies in the x-y plane, nodes move in z and rotate
     /// about x and y; members carry end bending moments and a torque.
     Grillage,
+    /// General space frame (a `model = "space"` scene that is not planar):
+    /// nodes move in x, y, z and rotate about all three axes; members carry an
+    /// axial force (a reaction: inextensible), a torque and two bending
+    /// moments at each end, in the element's axes ([`crate::space`]).
+    Space,
 }
 
 /// A nodal component: translations in x, y (planar) or z (grillage), rotations
@@ -65,12 +71,24 @@ impl Component {
         }
     }
     /// The slot in [`Node::fixed`], [`Node::load`] and the per-node arrays of
-    /// the response: 0, 1, 2 for `x, y, rz` (planar) and for `z, rx, ry` (grillage).
+    /// the response (six slots, one per component): 0, 1, 2 for `x, y, rz`
+    /// (the planar components), 3, 4, 5 for `z, rx, ry` (the grillage's).
     pub fn index(self) -> usize {
         match self {
-            Component::X | Component::Z => 0,
-            Component::Y | Component::Rx => 1,
-            Component::Rz | Component::Ry => 2,
+            Component::X => 0,
+            Component::Y => 1,
+            Component::Rz => 2,
+            Component::Z => 3,
+            Component::Rx => 4,
+            Component::Ry => 5,
+        }
+    }
+    /// The global axis (0 = x, 1 = y, 2 = z) of the translation or rotation.
+    pub fn axis(self) -> usize {
+        match self {
+            Component::X | Component::Rx => 0,
+            Component::Y | Component::Ry => 1,
+            Component::Z | Component::Rz => 2,
         }
     }
     /// True for the rotations.
@@ -82,12 +100,34 @@ impl Component {
 /// A row of `A` an element contributes to (see [`Model::element_rows`]).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(crate) enum ElementRow {
-    /// The hinge rotation of the section at the start node.
+    /// The hinge rotation of the section at the start node (space: about `e3`).
     From,
-    /// The hinge rotation of the section at the end node.
+    /// The hinge rotation of the section at the end node (space: about `e3`).
     To,
-    /// The elongation (planar) or twist (grillage), dual to the second force.
+    /// The elongation (planar) or twist (grillage, space), dual to the second force.
     Second,
+    /// Space: the hinge rotation about `e2` of the section at the start node.
+    From2,
+    /// Space: the hinge rotation about `e2` of the section at the end node.
+    To2,
+    /// Space: the elongation, dual to the axial force (held at zero).
+    Third,
+}
+
+impl ElementRow {
+    /// The row of `A` (the member force) of element `e` of `ne`: the moments
+    /// of all sections `[0, 2 ne)`, the second forces `[2 ne, 3 ne)`, then
+    /// (space) the moments about `e2` `[3 ne, 5 ne)` and the axial forces.
+    pub(crate) fn row(self, e: usize, ne: usize) -> usize {
+        match self {
+            ElementRow::From => 2 * e,
+            ElementRow::To => 2 * e + 1,
+            ElementRow::Second => 2 * ne + e,
+            ElementRow::From2 => 3 * ne + 2 * e,
+            ElementRow::To2 => 3 * ne + 2 * e + 1,
+            ElementRow::Third => 5 * ne + e,
+        }
+    }
 }
 
 /// How a kind reads the strength of a member's second force.
@@ -109,14 +149,16 @@ pub(crate) struct SecondForceRule {
 }
 
 impl Model {
-    /// `"planar"` or `"grillage"`.
+    /// `"planar"`, `"grillage"` or `"space"`.
     pub fn as_str(self) -> &'static str {
         match self {
             Model::Planar => "planar",
             Model::Grillage => "grillage",
+            Model::Space => "space",
         }
     }
-    /// The kind named by a scene's `model` key, if it is one of these.
+    /// The kind named by a scene's `model` key, if it is planar or grillage
+    /// (`"space"` is read by the scene: it may reduce to either).
     pub fn from_name(name: &str) -> Option<Model> {
         match name {
             "planar" => Some(Model::Planar),
@@ -124,25 +166,40 @@ impl Model {
             _ => None,
         }
     }
-    /// The three nodal components, in the order of [`Node::fixed`] and [`Node::load`].
-    pub fn components(self) -> [Component; 3] {
+    /// The nodal components, in the order of the generalised coordinates.
+    pub fn components(self) -> &'static [Component] {
         match self {
-            Model::Planar => [Component::X, Component::Y, Component::Rz],
-            Model::Grillage => [Component::Z, Component::Rx, Component::Ry],
+            Model::Planar => &[Component::X, Component::Y, Component::Rz],
+            Model::Grillage => &[Component::Z, Component::Rx, Component::Ry],
+            Model::Space => &[
+                Component::X,
+                Component::Y,
+                Component::Z,
+                Component::Rx,
+                Component::Ry,
+                Component::Rz,
+            ],
         }
     }
-    /// The load keys of the three components: `fx, fy, mz` or `fz, mx, my`.
-    pub fn load_keys(self) -> [&'static str; 3] {
+    /// The load keys of the components: `fx, fy, mz`, `fz, mx, my` or all six.
+    pub fn load_keys(self) -> &'static [&'static str] {
         match self {
-            Model::Planar => ["fx", "fy", "mz"],
-            Model::Grillage => ["fz", "mx", "my"],
+            Model::Planar => &["fx", "fy", "mz"],
+            Model::Grillage => &["fz", "mx", "my"],
+            Model::Space => &["fx", "fy", "fz", "mx", "my", "mz"],
         }
+    }
+    /// The load key of component `c` of this kind (`fx`, ..., `mz`).
+    pub fn load_key(self, c: Component) -> &'static str {
+        let k = self.components().iter().position(|&x| x == c);
+        k.map_or("", |k| self.load_keys()[k])
     }
     /// The load keys of the other kind (errors in a scene of this kind).
-    pub(crate) fn foreign_load_keys(self) -> [&'static str; 3] {
+    pub(crate) fn foreign_load_keys(self) -> &'static [&'static str] {
         match self {
-            Model::Planar => ["fz", "mx", "my"],
-            Model::Grillage => ["fx", "fy", "mz"],
+            Model::Planar => &["fz", "mx", "my"],
+            Model::Grillage => &["fx", "fy", "mz"],
+            Model::Space => &[],
         }
     }
     /// Appended to an unknown support component's message.
@@ -150,18 +207,67 @@ impl Model {
         match self {
             Model::Planar => "",
             Model::Grillage => " (model = \"grillage\")",
+            Model::Space => " (model = \"space\")",
         }
     }
-    /// The second member force of element `e`: its axial force or its torque.
+    /// The translations of a node in this kind: `x, y`; `z`; `x, y, z`.
+    pub fn translations(self) -> &'static [Component] {
+        match self {
+            Model::Planar => &[Component::X, Component::Y],
+            Model::Grillage => &[Component::Z],
+            Model::Space => &[Component::X, Component::Y, Component::Z],
+        }
+    }
+    /// The length of a node's translation, from its per-node array (by
+    /// [`Component::index`]).
+    pub fn translation_size(self, v: &[f64; 6]) -> f64 {
+        match self {
+            Model::Planar => v[0].hypot(v[1]),
+            Model::Grillage => v[3].abs(),
+            Model::Space => (v[0] * v[0] + v[1] * v[1] + v[3] * v[3]).sqrt(),
+        }
+    }
+    /// Member forces per element: 3 (two end moments and the second force),
+    /// 6 in space (two moments about `e3`, the torque, two about `e2`, the
+    /// axial force), in the row order of [`ElementRow::row`].
+    pub(crate) fn forces_per_element(self) -> usize {
+        match self {
+            Model::Planar | Model::Grillage => 3,
+            Model::Space => 6,
+        }
+    }
+    /// The member force of row `r` of `A` (see [`ElementRow::row`]), for `ne` elements.
+    pub(crate) fn force_of_row(self, r: usize, ne: usize) -> MemberForce {
+        if r < 2 * ne {
+            MemberForce::Moment(r)
+        } else if r < 3 * ne {
+            self.second_force(r - 2 * ne)
+        } else if r < 5 * ne {
+            MemberForce::Moment2(r - 3 * ne)
+        } else {
+            MemberForce::Axial(r - 5 * ne)
+        }
+    }
+    /// The second member force of element `e`: its axial force or its torque
+    /// (space: the torque; the axial force is the third).
     pub fn second_force(self, e: usize) -> MemberForce {
         match self {
             Model::Planar => MemberForce::Axial(e),
-            Model::Grillage => MemberForce::Torque(e),
+            Model::Grillage | Model::Space => MemberForce::Torque(e),
         }
     }
     /// How the second force's strength is given.
     pub(crate) fn second_force_rule(self) -> SecondForceRule {
         match self {
+            Model::Space => SecondForceRule {
+                key: "plastic_torque",
+                curve: Curve::BendingTorsion,
+                required: true,
+                required_message: "a member of a space scene needs plastic_torque (the plastic torque Tp of the pipe)",
+                foreign_key: "plastic_axial",
+                foreign_message: "not available in the general space model yet (its members are inextensible: the axial force is a reaction); a planar space scene takes it",
+                facets_message: "",
+            },
             Model::Grillage => SecondForceRule {
                 key: "plastic_torque",
                 curve: Curve::BendingTorsion,
@@ -187,16 +293,26 @@ impl Model {
     pub(crate) fn second_force_is_rigid(self, el: &Element) -> bool {
         self == Model::Planar && el.interaction.is_none()
     }
+    /// The rows of `A` of element `e` (of `ne`) whose deformation is held at
+    /// zero (no yield mode): the elongation of an inextensible member.
+    pub(crate) fn rigid_rows(self, el: &Element, e: usize, ne: usize) -> Option<usize> {
+        match self {
+            Model::Space => Some(ElementRow::Third.row(e, ne)),
+            _ => self
+                .second_force_is_rigid(el)
+                .then(|| ElementRow::Second.row(e, ne)),
+        }
+    }
     /// The entries of element `el`'s rows of `A`, given the coordinate
-    /// indices `ia`, `ib` of its end nodes (in the order of
-    /// [`Model::components`]; `None` where supported). Calls `add(row,
+    /// indices `ia`, `ib` of its end nodes (by [`Component::index`]; `None`
+    /// where supported or not a component of the kind). Calls `add(row,
     /// coordinate, value)` for each term, in a fixed order (the sums are
     /// bit-identical from run to run).
     pub(crate) fn element_rows(
         self,
         el: &Element,
-        ia: [Option<usize>; 3],
-        ib: [Option<usize>; 3],
+        ia: [Option<usize>; 6],
+        ib: [Option<usize>; 6],
         add: &mut dyn FnMut(ElementRow, Option<usize>, f64),
     ) {
         let (c, s, h) = (el.cos, el.sin, el.length);
@@ -228,24 +344,73 @@ impl Model {
             }
             Model::Grillage => {
                 // psi = -(w_b - w_a) / h; theta = -s r_x + c r_y; phi = c r_x + s r_y
-                let psi = [(ia[0], 1.0 / h), (ib[0], -1.0 / h)];
+                let psi = [(ia[3], 1.0 / h), (ib[3], -1.0 / h)];
                 // from section: -(theta_a - psi)
-                add(rf, ia[1], s);
-                add(rf, ia[2], -c);
+                add(rf, ia[4], s);
+                add(rf, ia[5], -c);
                 for &(j, v) in &psi {
                     add(rf, j, v);
                 }
                 // to section: theta_b - psi
-                add(rt, ib[1], -s);
-                add(rt, ib[2], c);
+                add(rt, ib[4], -s);
+                add(rt, ib[5], c);
                 for &(j, v) in &psi {
                     add(rt, j, -v);
                 }
                 // twist phi_b - phi_a
-                add(rn, ia[1], -c);
-                add(rn, ia[2], -s);
-                add(rn, ib[1], c);
-                add(rn, ib[2], s);
+                add(rn, ia[4], -c);
+                add(rn, ia[5], -s);
+                add(rn, ib[4], c);
+                add(rn, ib[5], s);
+            }
+            Model::Space => {
+                // global slots of the translations and rotations
+                const T: [usize; 3] = [0, 1, 3];
+                const R: [usize; 3] = [4, 5, 2];
+                let [e1, e2, e3] = el.axes;
+                let (f2, t2, th) = (ElementRow::From2, ElementRow::To2, ElementRow::Third);
+                // about e3 (the planar rows when e3 = z):
+                // from: -(e3 . th_a - e2 . du / h), to: e3 . th_b - e2 . du / h
+                for g in 0..3 {
+                    add(rf, ia[R[g]], -e3[g]);
+                }
+                for g in 0..3 {
+                    add(rf, ia[T[g]], -e2[g] / h);
+                    add(rf, ib[T[g]], e2[g] / h);
+                }
+                for g in 0..3 {
+                    add(rt, ib[R[g]], e3[g]);
+                }
+                for g in 0..3 {
+                    add(rt, ia[T[g]], e2[g] / h);
+                    add(rt, ib[T[g]], -e2[g] / h);
+                }
+                // twist e1 . (th_b - th_a)
+                for g in 0..3 {
+                    add(rn, ia[R[g]], -e1[g]);
+                    add(rn, ib[R[g]], e1[g]);
+                }
+                // about e2 (the grillage rows when e3 = z):
+                // from: -(e2 . th_a + e3 . du / h), to: e2 . th_b + e3 . du / h
+                for g in 0..3 {
+                    add(f2, ia[R[g]], -e2[g]);
+                }
+                for g in 0..3 {
+                    add(f2, ia[T[g]], e3[g] / h);
+                    add(f2, ib[T[g]], -e3[g] / h);
+                }
+                for g in 0..3 {
+                    add(t2, ib[R[g]], e2[g]);
+                }
+                for g in 0..3 {
+                    add(t2, ia[T[g]], -e3[g] / h);
+                    add(t2, ib[T[g]], e3[g] / h);
+                }
+                // elongation e1 . (u_b - u_a)
+                for g in 0..3 {
+                    add(th, ia[T[g]], -e1[g]);
+                    add(th, ib[T[g]], e1[g]);
+                }
             }
         }
     }
@@ -265,11 +430,21 @@ impl Model {
             Model::Grillage => {
                 let collinear = (ea.cos == eb.cos && ea.sin == eb.sin)
                     || (ea.cos == -eb.cos && ea.sin == -eb.sin);
-                !n.fixed[1]
-                    && !n.fixed[2]
-                    && n.load[1] == 0.0
-                    && n.load[2] == 0.0
+                !n.fixed[4]
+                    && !n.fixed[5]
+                    && n.load[4] == 0.0
+                    && n.load[5] == 0.0
                     && collinear
+                    && ea.plastic_moment == eb.plastic_moment
+                    && ea.interaction == eb.interaction
+            }
+            // Space: collinear elements of the same strength and the same
+            // axes (then all three moments carry over in the same axes) at a
+            // node whose three rotations are free and unloaded.
+            Model::Space => {
+                let same = ea.axes == eb.axes;
+                [2, 4, 5].iter().all(|&k| !n.fixed[k] && n.load[k] == 0.0)
+                    && same
                     && ea.plastic_moment == eb.plastic_moment
                     && ea.interaction == eb.interaction
             }
@@ -287,6 +462,7 @@ impl Model {
                 &[0usize, 1][..],
                 "dx and dy must be 0 in a grillage (nodes move in z only)",
             ),
+            Model::Space => (&[][..], ""),
         }
     }
 }

@@ -80,6 +80,6 @@ pub mod yield_surface;
 pub use analysis::{Analysis, AnalysisOptions};
 pub use assemble::System;
 pub use error::FramesError;
-pub use model::{Frame, History, Scene};
+pub use model::{Frame, History, Model, ReadOptions, Scene};
 pub use solve::SolveOptions;
 pub use timestep::{StepOptions, StepResponse, TimeStepping};

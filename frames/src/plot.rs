@@ -238,10 +238,12 @@ fn profiles(a: &Analysis, dir: &Path) -> Result<Vec<PathBuf>, FramesError> {
     let amp = 0.2 * extent;
     let (cx, cy) = (0.5 * (xmin + xmax), 0.5 * (ymin + ymax));
     let half = 0.5 * extent + 1.6 * amp;
-    let [c0, c1, c2] = fr.model.components().map(|c| c.as_str());
-    let mut text = format!(
-        "interval,lambda_from,lambda_to,lambda_shown,node,x,y,shape_{c0},shape_{c1},shape_{c2}\n"
-    );
+    let comps = fr.model.components();
+    let mut text = String::from("interval,lambda_from,lambda_to,lambda_shown,node,x,y");
+    for c in comps {
+        let _ = write!(text, ",shape_{}", c.as_str());
+    }
+    text.push('\n');
     let mut shapes = Vec::new();
     for &i in &ivs {
         let iv = &a.reading.intervals[i];
@@ -249,15 +251,15 @@ fn profiles(a: &Analysis, dir: &Path) -> Result<Vec<PathBuf>, FramesError> {
         let l = a.solution.pieces[iv.piece]
             .representative()
             .max(iv.lambda_from);
-        let acc: Vec<[f64; 3]> = r
+        // the model's components in its order
+        let acc: Vec<Vec<f64>> = r
             .accelerations
             .iter()
-            .map(|c| {
-                [
-                    c[0][0] + c[0][1] * l,
-                    c[1][0] + c[1][1] * l,
-                    c[2][0] + c[2][1] * l,
-                ]
+            .map(|a| {
+                comps
+                    .iter()
+                    .map(|c| a[c.index()][0] + a[c.index()][1] * l)
+                    .collect()
             })
             .collect();
         let norm = acc.iter().fold(0.0f64, |m, v| {
@@ -268,27 +270,31 @@ fn profiles(a: &Analysis, dir: &Path) -> Result<Vec<PathBuf>, FramesError> {
             })
         });
         let s = if norm > 0.0 { 1.0 / norm } else { 0.0 };
-        let shape: Vec<[f64; 3]> = acc.iter().map(|v| [v[0] * s, v[1] * s, v[2] * s]).collect();
+        let shape: Vec<Vec<f64>> = acc
+            .iter()
+            .map(|v| v.iter().map(|x| x * s).collect())
+            .collect();
         for (k, n) in fr.nodes.iter().enumerate() {
             let lt = if iv.lambda_to.is_finite() {
                 g(iv.lambda_to)
             } else {
                 "inf".into()
             };
-            let _ = writeln!(
+            let _ = write!(
                 text,
-                "{},{},{},{},{},{},{},{},{},{}",
+                "{},{},{},{},{},{},{}",
                 i,
                 g(iv.lambda_from),
                 lt,
                 g(l),
                 n.id,
                 n.x,
-                n.y,
-                shape[k][0],
-                shape[k][1],
-                shape[k][2]
+                n.y
             );
+            for v in &shape[k] {
+                let _ = write!(text, ",{v}");
+            }
+            text.push('\n');
         }
         shapes.push((i, l, shape));
     }
@@ -318,7 +324,7 @@ fn profiles(a: &Analysis, dir: &Path) -> Result<Vec<PathBuf>, FramesError> {
                     .build_cartesian_2d((cx - half)..(cx + half), (cy - half)..(cy + half))?;
                 // displaced position of a node in the drawing
                 let moved = |i: usize| -> (f64, f64) {
-                    let (n, s) = (&fr.nodes[i], shape[i]);
+                    let (n, s) = (&fr.nodes[i], &shape[i]);
                     let (x, y) = view(n.x, n.y);
                     if grillage {
                         (x, y + amp * s[0])
@@ -488,6 +494,7 @@ fn displacements(a: &Analysis, dir: &Path) -> Result<Vec<PathBuf>, FramesError> 
     let translations: &[Component] = match fr.model {
         Model::Planar => &[Component::X, Component::Y],
         Model::Grillage => &[Component::Z],
+        Model::Space => &[Component::X, Component::Y, Component::Z],
     };
     for (i, n) in fr.nodes.iter().enumerate() {
         for &c in translations {
@@ -521,8 +528,8 @@ fn displacements(a: &Analysis, dir: &Path) -> Result<Vec<PathBuf>, FramesError> 
         let _ = write!(text, "{},{}", t.times[k], t.lambda[k]);
         for row in [&t.displacement[k], &t.velocity[k]] {
             for v in row.iter() {
-                for c in v {
-                    let _ = write!(text, ",{c}");
+                for c in fr.model.components() {
+                    let _ = write!(text, ",{}", v[c.index()]);
                 }
             }
         }

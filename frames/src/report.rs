@@ -209,6 +209,9 @@ impl Analysis {
     fn add_facet(&self, o: &mut Value, mode: usize) {
         if let Some(f) = self.system.modes.get(mode).and_then(|m| m.facet) {
             o["facet"] = json!({"index": f.index, "of": f.count, "normal": f.normal});
+            if let Some(n3) = f.normal3 {
+                o["facet"]["normal3"] = json!(n3);
+            }
         }
     }
 
@@ -243,8 +246,15 @@ impl Analysis {
                 }
             }
         }
+        let space = self.scene.frame.model == crate::model::Model::Space;
         seen.iter()
             .map(|(c, k)| {
+                if space {
+                    return format!(
+                        "(M2^2 + M3^2)/Mp^2 + (T/Tp)^2 <= 1: inscribed polyhedron of {} facets ({k} longitudes, the polygon's latitudes; vertices on the surface), one yield mode per facet",
+                        k * k / 2
+                    );
+                }
                 format!(
                     "{}: inscribed polygon of {k} facets (vertices on the curve, the axis points among them), one yield mode per facet",
                     c.describe()
@@ -263,6 +273,15 @@ impl Analysis {
             MemberForce::Moment(k) => {
                 let n = section_name(fr, &self.system, k);
                 format!("moment {} {} ({})", n.member, n.end.as_str(), n.node)
+            }
+            MemberForce::Moment2(k) => {
+                let n = section_name(fr, &self.system, k);
+                format!(
+                    "moment about e2 {} {} ({})",
+                    n.member,
+                    n.end.as_str(),
+                    n.node
+                )
             }
             MemberForce::Axial(e) | MemberForce::Torque(e) => {
                 let el = &fr.elements[e];
@@ -292,14 +311,17 @@ impl Analysis {
             crate::model::Model::Grillage => {
                 "in-plane coordinates (x, y, rz) and forces (axial forces, in-plane moments)"
             }
+            crate::model::Model::Space => "",
         };
-        out.push(format!(
+        if !other.is_empty() {
+            out.push(format!(
             "by construction ({} model): the {} of a space frame, {} coordinates and {} member forces",
             fr.model.as_str(),
             other,
             3 * nn,
             3 * fr.elements.len()
         ));
+        }
         if let Some(r) = &fr.reduction {
             out.push(r.summary());
         }
@@ -478,6 +500,7 @@ impl Analysis {
             "axial": match fr.model {
                 crate::model::Model::Planar => "members without plastic_axial inextensible: the axial force of each such element is a member force whose elongation rate is held at zero (no yield mode); with plastic_axial it enters the yield polygon of both end sections",
                 crate::model::Model::Grillage => "grillage: no axial forces; the torque of each element is a member force in the yield polygon of both end sections",
+                crate::model::Model::Space => "space: members inextensible (the axial force of each element is a member force whose elongation rate is held at zero); the torque and the two bending moments of each section enter its yield polyhedron",
             },
         });
         let info = &self.solution.info;
@@ -615,7 +638,7 @@ impl Analysis {
         let mut nodes = Map::new();
         for &i in &node_sel {
             let n = &fr.nodes[i];
-            let series = |v: &Vec<Vec<[f64; 3]>>| {
+            let series = |v: &Vec<Vec<[f64; 6]>>| {
                 let mut o = Map::new();
                 for c in fr.model.components() {
                     o.insert(
@@ -648,6 +671,7 @@ impl Analysis {
             ("conventions", Part::Value(json!(match fr.model {
                 crate::model::Model::Planar => "bending moments sagging-positive in each element's axes (local y = member direction turned 90 degrees counter-clockwise); sign of a section = sign of its moment at yield (for a facet of a yield polygon: the sign of the normal's bending component; the facet and its unit normal in (M/Mp, N/Np) are given); end = end of the element the section sits at; affine values are [base, slope] with value = base + slope * lambda",
                 crate::model::Model::Grillage => "grillage in the x-y plane: z translation, right-handed rotations rx, ry; element axes x' along the member, y' turned 90 degrees counter-clockwise; bending moment about y' dual to the hinge rotation (from end: -(theta_a - psi), to end: theta_b - psi, psi = -(w_b - w_a)/h), torque right-handed about x'; each yield mode is a facet of the inscribed polygon in (M/Mp, T/Tp), given with its unit normal; sign = sign of the normal's bending component; affine values are [base, slope] with value = base + slope * lambda",
+                crate::model::Model::Space => "space frame in global axes: translations x, y, z, right-handed rotations rx, ry, rz; element axes e1 along the member, e3 from its orientation (default z), e2 = e3 x e1; the moment about e3 (as the planar one: from end -(e3.th_a - e2.du/h), to end e3.th_b - e2.du/h) and about e2 (as the grillage's: from end -(e2.th_a + e3.du/h), to end e2.th_b + e3.du/h), the torque about e1; each yield mode is a facet of the inscribed polyhedron in (M2/Mp, M3/Mp, T/Tp), given with its unit normal (normal3); affine values are [base, slope] with value = base + slope * lambda",
             }))),
             ("breakpoints", breakpoints),
             ("hinges", Part::Value(json!(hinges))),
@@ -849,6 +873,9 @@ impl Analysis {
             }
             crate::model::Model::Grillage => {
                 "grillage: z, rx, ry per node; end moments and a torque per element"
+            }
+            crate::model::Model::Space => {
+                "space: x, y, z, rx, ry, rz per node; two bending moments per section, a torque and an axial force (a reaction) per element"
             }
         };
         let _ = writeln!(
@@ -1056,24 +1083,21 @@ impl Analysis {
         if let Some(&t_end) = t.times.last() {
             let _ = writeln!(s);
             let k = t.times.len() - 1;
-            let grillage = fr.model == crate::model::Model::Grillage;
             let mut far = (0usize, 0.0f64);
             for (i, d) in t.displacement[k].iter().enumerate() {
-                let m = if grillage {
-                    d[0].abs()
-                } else {
-                    d[0].hypot(d[1])
-                };
+                let m = fr.model.translation_size(d);
                 if m > far.1 {
                     far = (i, m);
                 }
             }
             let d = t.displacement[k][far.0];
-            let what = if grillage {
-                format!("z = {}", fmt_g(d[0]))
-            } else {
-                format!("x = {}, y = {}", fmt_g(d[0]), fmt_g(d[1]))
-            };
+            let what = fr
+                .model
+                .translations()
+                .iter()
+                .map(|c| format!("{} = {}", c.as_str(), fmt_g(d[c.index()])))
+                .collect::<Vec<_>>()
+                .join(", ");
             let _ = writeln!(
                 s,
                 "at t = {} (lambda = {}): largest displacement at {}: {what}  [integration exact on each piece]",

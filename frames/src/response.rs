@@ -35,9 +35,10 @@ pub struct IntervalResponse {
     pub lambda_from: f64,
     /// End (`f64::INFINITY` when unbounded).
     pub lambda_to: f64,
-    /// Accelerations per node, per component `[x, y, rz]`, affine in `Lambda`
-    /// (zero for supported and left-out components).
-    pub accelerations: Vec<[Affine; 3]>,
+    /// Accelerations per node, per component (by [`crate::model::Component::index`]:
+    /// `[x, y, rz, z, rx, ry]`), affine in `Lambda` (zero for supported and
+    /// left-out components and those not of the model).
+    pub accelerations: Vec<[Affine; 6]>,
     /// The bending moments on each piece of the path the interval holds, in
     /// order, covering it end to end (one piece where the path does not pivot
     /// inside the interval).
@@ -106,10 +107,10 @@ pub struct TimeResponse {
     pub times: Vec<f64>,
     /// `lambda(t)`.
     pub lambda: Vec<f64>,
-    /// Per time, per node, `[x, y, rz]`.
-    pub displacement: Vec<Vec<[f64; 3]>>,
-    /// Per time, per node, `[x, y, rz]`.
-    pub velocity: Vec<Vec<[f64; 3]>>,
+    /// Per time, per node, by [`crate::model::Component::index`] (`[x, y, rz, z, rx, ry]`).
+    pub displacement: Vec<Vec<[f64; 6]>>,
+    /// Per time, per node, by [`crate::model::Component::index`].
+    pub velocity: Vec<Vec<[f64; 6]>>,
 }
 
 /// Everything the response holds.
@@ -166,8 +167,8 @@ pub fn force_tolerance(solution: &Solution) -> f64 {
     solution.tolerance.max(64.0 * kappa * eps)
 }
 
-fn to_nodes(frame: &Frame, system: &System, q: &[f64]) -> Vec<[f64; 3]> {
-    let mut out = vec![[0.0; 3]; frame.nodes.len()];
+fn to_nodes(frame: &Frame, system: &System, q: &[f64]) -> Vec<[f64; 6]> {
+    let mut out = vec![[0.0; 6]; frame.nodes.len()];
     for (j, c) in system.coordinates.iter().enumerate() {
         // a path that stopped early may carry fewer values than coordinates
         out[c.node][c.component.index()] = q.get(j).copied().unwrap_or(0.0);
@@ -237,7 +238,7 @@ pub fn build(
     for iv in &reading.intervals {
         let piece = &pieces[iv.piece];
         let (base, slope) = affine_accelerations(system, iv, piece);
-        let mut acc = vec![[[0.0; 2]; 3]; frame.nodes.len()];
+        let mut acc = vec![[[0.0; 2]; 6]; frame.nodes.len()];
         for (j, c) in system.coordinates.iter().enumerate() {
             acc[c.node][c.component.index()] = [base[j], slope[j]];
         }

@@ -35,14 +35,22 @@
 //!   (`e3`, about `e1`, about `e2`), and the report names the axes;
 //! - the loads: a component smaller than `1e-12` of the largest force (or
 //!   moment) is rounding; loads in the plane give the planar model, normal
-//!   to it the grillage; both: the general space model, not built yet (an
-//!   error that says so);
+//!   to it the grillage; both (or nodes off one plane): the general space
+//!   model, and the report says why;
 //! - supports: a fixed set of global translations (rotations) must be
 //!   spanned by the plane's axes (fix `x, y, z` together, or only axes that
 //!   are the plane's); the components of the other model are left out.
 //!
 //! Every member needs `plastic_torque` (a pipe); `plastic_axial` is optional
-//! as in a planar scene. Arcs are not available in space scenes yet.
+//! as in a planar scene (refused in the general model). An arc's points
+//! count in the plane check (`arc_axes` gives its in-plane axes).
+//!
+//! **The general space model** ([`crate::kind::Model::Space`]): six
+//! components per node in global axes, element axes from
+//! [`element_axes`], each section on the yield polyhedron
+//! ([`crate::yield_surface::Polyhedron`]); the rows of `A` are in
+//! [`crate::kind`]. `ReadOptions { reduce_space: false }` assembles every
+//! space scene so (the check of the reduction).
 
 use crate::kind::Model;
 
@@ -102,6 +110,12 @@ impl Reduction {
     /// One line for the report: what the space scene was solved as, and why.
     pub fn summary(&self) -> String {
         let (dropped, kept) = match self.kind {
+            Model::Space => {
+                return format!(
+                    "space scene solved as the general space model ({}): six components per node in the global axes, each section on the inscribed yield polyhedron",
+                    self.reason
+                )
+            }
             Model::Planar => (
                 "the out-of-plane translation, the rotations about in-plane axes, the torques and the bending moments about in-plane axes",
                 "translations along e1, e2 reported as x, y, the rotation about e3 as rz",
@@ -209,7 +223,7 @@ pub(crate) fn reduce(points: &[[f64; 3]], loads: &[SpaceLoad]) -> Result<Reducti
             .find(|&(_, d)| d > tol)
         {
             last = format!(
-                "the nodes are not in one plane (node {} is {d:e} off the plane of the others): the general space model (six components per node) is not assembled yet",
+                "the nodes are not in one plane: node {} is {d:e} off the plane of the others",
                 i + 1
             );
             continue;
@@ -234,7 +248,7 @@ pub(crate) fn reduce(points: &[[f64; 3]], loads: &[SpaceLoad]) -> Result<Reducti
                 "the nodes lie in one plane and every load acts normal to it",
             ),
             (true, true) => {
-                last = "the loads act both in the plane of the nodes and normal to it: the general space model (six components per node) is not assembled yet".into();
+                last = "the loads act both in the plane of the nodes and normal to it".into();
                 continue;
             }
         };
@@ -244,7 +258,100 @@ pub(crate) fn reduce(points: &[[f64; 3]], loads: &[SpaceLoad]) -> Result<Reducti
             ..r
         });
     }
-    Err(last)
+    general(points, &last)
+}
+
+/// The general space model (no reduction): global axes, `reason` says why.
+pub(crate) fn general(points: &[[f64; 3]], reason: &str) -> Result<Reduction, String> {
+    if points.iter().all(|p| *p == points[0]) {
+        return Err("all nodes coincide".into());
+    }
+    Ok(Reduction {
+        kind: Model::Space,
+        axes: [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]],
+        global_axes: true,
+        reason: reason.into(),
+    })
+}
+
+/// The in-plane axes `(u, v)` of an arc in the plane with normal `n`
+/// (unit): `u` the plane's direction nearest global `x` (`y` when `n` is
+/// within about 25 degrees of `x`), `v = n x u`; exactly `x, y` when `n` is
+/// `+z`, so an arc of the x-y plane has the planar arc's points bit for bit.
+/// Angles run counter-clockwise about `n` from `u`.
+/// With `reference` (an arc's `reference` key) `u` is its part in the plane
+/// instead; `None` when that part is zero.
+pub(crate) fn arc_axes(n: [f64; 3], reference: Option<[f64; 3]>) -> Option<([f64; 3], [f64; 3])> {
+    let g = match reference {
+        Some(g) => g,
+        None if n[0] == 0.0 && n[1] == 0.0 && n[2] > 0.0 => {
+            return Some(([1.0, 0.0, 0.0], [0.0, 1.0, 0.0]))
+        }
+        None if n[0].abs() < 0.9 => [1.0, 0.0, 0.0],
+        None => [0.0, 1.0, 0.0],
+    };
+    let gn = dot(g, n);
+    let w = sub(g, [gn * n[0], gn * n[1], gn * n[2]]);
+    let across = norm(w) > 1e-6 * norm(g);
+    if !across {
+        return None;
+    }
+    let u = unit(w);
+    Some((u, cross(n, u)))
+}
+
+/// The point of an arc (centre `c`, radius `r`, in-plane axes `u, v`) at
+/// `angle` degrees.
+pub(crate) fn arc_point(c: [f64; 3], r: f64, (u, v): ([f64; 3], [f64; 3]), angle: f64) -> [f64; 3] {
+    let (s, co) = angle.to_radians().sin_cos();
+    [
+        c[0] + r * (co * u[0] + s * v[0]),
+        c[1] + r * (co * u[1] + s * v[1]),
+        c[2] + r * (co * u[2] + s * v[2]),
+    ]
+}
+
+/// The unit vector along `v`, if `v` is finite and not zero.
+pub(crate) fn unit_of(v: &[f64]) -> Option<[f64; 3]> {
+    if v.len() != 3 || v.iter().any(|x| !x.is_finite() || x.abs() > 1e100) {
+        return None;
+    }
+    let w = [v[0], v[1], v[2]];
+    let n = norm(w);
+    (n > 0.0).then(|| unit(w))
+}
+
+/// The axes `[e1, e2, e3]` of an element of a general space frame with unit
+/// direction `e1`: `e3` is the part of the orientation vector `v` normal to
+/// `e1`, `e2 = e3 x e1`. Without an `orientation` key `v` is global `z`
+/// (`x` for an element within `1e-6` rad of vertical), so an element of the
+/// x-y plane has the planar element's axes: `e2` the direction turned 90
+/// degrees counter-clockwise, `e3 = z`. The pipe's bending is isotropic, so
+/// the choice matters only through the polyhedron's longitudes (the pure
+/// bending about `e2` and `e3` is exact); `Err` when `v` is along `e1`.
+pub fn element_axes(e1: [f64; 3], v: Option<[f64; 3]>) -> Result<[[f64; 3]; 3], String> {
+    let v = match v {
+        Some(v) => v,
+        None if e1[0].hypot(e1[1]) < 1e-6 => [1.0, 0.0, 0.0],
+        None => [0.0, 0.0, 1.0],
+    };
+    let along = dot(v, e1);
+    let n = sub(v, [along * e1[0], along * e1[1], along * e1[2]]);
+    let (nv, nn) = (norm(v), norm(n));
+    let ok = nv > 0.0 && nn > 1e-6 * nv;
+    if !ok {
+        return Err(format!(
+            "the orientation vector {v:?} is zero or along the member: give a direction across it (the element's local e3)"
+        ));
+    }
+    // the planar element's exact axes when e1 lies in the x-y plane and v = z
+    let (e2, e3) = if e1[2] == 0.0 && v[0] == 0.0 && v[1] == 0.0 && v[2] > 0.0 {
+        ([-e1[1], e1[0], 0.0], [0.0, 0.0, 1.0])
+    } else {
+        let e3 = unit(n);
+        (cross(e3, e1), e3)
+    };
+    Ok([e1, e2, e3])
 }
 
 /// The axes of the plane with normal `n`.
@@ -276,9 +383,9 @@ fn axes(n: [f64; 3]) -> Reduction {
 }
 
 /// The fixed components of the reduced model from the six global ones
-/// (`[x, y, z, rx, ry, rz]`), in the order of `kind.components()`; `Err` when
-/// a support fixes directions skew to the plane's axes.
-pub(crate) fn local_fixed(r: &Reduction, fixed: [bool; 6]) -> Result<[bool; 3], String> {
+/// (`[x, y, z, rx, ry, rz]`), by [`crate::kind::Component::index`]; `Err`
+/// when a support fixes directions skew to the plane's axes.
+pub(crate) fn local_fixed(r: &Reduction, fixed: [bool; 6]) -> Result<[bool; 6], String> {
     let mut local = [false; 6];
     for (part, base) in [("translations", 0), ("rotations", 3)] {
         let mut count = 0;
@@ -296,18 +403,22 @@ pub(crate) fn local_fixed(r: &Reduction, fixed: [bool; 6]) -> Result<[bool; 3], 
             ));
         }
     }
+    // slots x, y, rz, z, rx, ry
+    let slots = [local[0], local[1], local[5], local[2], local[3], local[4]];
     Ok(match r.kind {
-        Model::Planar => [local[0], local[1], local[5]],
-        Model::Grillage => [local[2], local[3], local[4]],
+        Model::Planar => [slots[0], slots[1], slots[2], false, false, false],
+        Model::Grillage => [false, false, false, slots[3], slots[4], slots[5]],
+        Model::Space => slots,
     })
 }
 
-/// A load in the reduced model's three components.
-pub(crate) fn local_load(r: &Reduction, l: SpaceLoad) -> [f64; 3] {
+/// A load in the model's components, by [`crate::kind::Component::index`].
+pub(crate) fn local_load(r: &Reduction, l: SpaceLoad) -> [f64; 6] {
     let (f, m) = (r.to_local(l.0), r.to_local(l.1));
     match r.kind {
-        Model::Planar => [f[0], f[1], m[2]],
-        Model::Grillage => [f[2], m[0], m[1]],
+        Model::Planar => [f[0], f[1], m[2], 0.0, 0.0, 0.0],
+        Model::Grillage => [0.0, 0.0, 0.0, f[2], m[0], m[1]],
+        Model::Space => [f[0], f[1], m[2], f[2], m[0], m[1]],
     }
 }
 
@@ -324,9 +435,10 @@ mod tests {
         assert_eq!(r.axes[2], [0.0, 1.0, 0.0]);
         let r = reduce(&pts, &[([0.0, 1.0, 0.0], [0.0; 3])]).unwrap();
         assert_eq!(r.kind, Model::Grillage);
-        let err = reduce(&pts, &[([0.0, 1.0, 1.0], [0.0; 3])]).unwrap_err();
-        assert!(err.contains("both in the plane"), "{err}");
-        let err = reduce(
+        let r = reduce(&pts, &[([0.0, 1.0, 1.0], [0.0; 3])]).unwrap();
+        assert_eq!(r.kind, Model::Space);
+        assert!(r.reason.contains("both in the plane"), "{}", r.reason);
+        let r = reduce(
             &[
                 [0.0, 0.0, 0.0],
                 [1.0, 0.0, 0.0],
@@ -335,8 +447,9 @@ mod tests {
             ],
             &[([0.0, 1.0, 0.0], [0.0; 3])],
         )
-        .unwrap_err();
-        assert!(err.contains("not in one plane"), "{err}");
+        .unwrap();
+        assert_eq!(r.kind, Model::Space);
+        assert!(r.reason.contains("not in one plane"), "{}", r.reason);
     }
 
     #[test]
@@ -346,12 +459,12 @@ mod tests {
         assert!(local_fixed(&r, [true, false, false, false, false, false]).is_err());
         assert_eq!(
             local_fixed(&r, [true, true, true, true, true, true]).unwrap(),
-            [true; 3]
+            [true, true, true, false, false, false]
         );
         // z is e2 of this plane
         assert_eq!(
             local_fixed(&r, [false, false, true, false, false, false]).unwrap(),
-            [false, true, false]
+            [false, true, false, false, false, false]
         );
     }
 }

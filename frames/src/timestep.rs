@@ -76,7 +76,7 @@ use crate::analysis::Analysis;
 use crate::assemble::{Sign, System};
 use crate::error::FramesError;
 use crate::integrate::{integrate, AffinePiece};
-use crate::model::{History, Model};
+use crate::model::History;
 use crate::report::format_number;
 use faer::{Col, Mat};
 use plcp::{Method, Plcp, Settings, Status, Var};
@@ -823,8 +823,8 @@ impl Continuation {
 
     /// Displacements per node at the end of the run, in the slots of
     /// [`crate::model::Component::index`]: `[x, y, rz]` (planar) or `[z, rx, ry]` (grillage).
-    pub fn end_displacements(&self, analysis: &Analysis) -> Vec<[f64; 3]> {
-        let mut out = vec![[0.0; 3]; analysis.scene.frame.nodes.len()];
+    pub fn end_displacements(&self, analysis: &Analysis) -> Vec<[f64; 6]> {
+        let mut out = vec![[0.0; 6]; analysis.scene.frame.nodes.len()];
         for (j, c) in analysis.system.coordinates.iter().enumerate() {
             out[c.node][c.component.index()] = self.run.end.q[j];
         }
@@ -862,33 +862,25 @@ impl Continuation {
         }
         let fr = &analysis.scene.frame;
         let d = self.end_displacements(analysis);
-        let grillage = analysis.system.model == Model::Grillage;
+        let model = analysis.system.model;
         // the translation of a node: (x, y) in plane, z out of plane
-        let size = |x: &[f64; 3]| {
-            if grillage {
-                x[0].abs()
-            } else {
-                x[0].hypot(x[1])
-            }
-        };
+        let size = |x: &[f64; 6]| model.translation_size(x);
         if let Some((i, _)) = d
             .iter()
             .enumerate()
             .max_by(|a, b| size(a.1).total_cmp(&size(b.1)))
         {
-            let _ = if grillage {
-                writeln!(
-                    s,
-                    "  at t = {}: largest displacement at {}: z = {:.6}",
-                    r.end.t, fr.nodes[i].id, d[i][0]
-                )
-            } else {
-                writeln!(
-                    s,
-                    "  at t = {}: largest displacement at {}: x = {:.6}, y = {:.6}",
-                    r.end.t, fr.nodes[i].id, d[i][0], d[i][1]
-                )
-            };
+            let what = model
+                .translations()
+                .iter()
+                .map(|c| format!("{} = {:.6}", c.as_str(), d[i][c.index()]))
+                .collect::<Vec<_>>()
+                .join(", ");
+            let _ = writeln!(
+                s,
+                "  at t = {}: largest displacement at {}: {what}",
+                r.end.t, fr.nodes[i].id
+            );
         }
         s
     }
@@ -910,16 +902,19 @@ impl Continuation {
             })
             .collect();
         let d = self.end_displacements(analysis);
-        let keys = if analysis.system.model == Model::Grillage {
-            ["z", "rx", "ry"]
-        } else {
-            ["x", "y", "rz"]
-        };
+        let comps = analysis.system.model.components();
         let nodes: Vec<Value> = fr
             .nodes
             .iter()
             .zip(&d)
-            .map(|(n, x)| json!({"node": n.id, keys[0]: x[0], keys[1]: x[1], keys[2]: x[2]}))
+            .map(|(n, x)| {
+                let mut o = serde_json::Map::new();
+                o.insert("node".into(), json!(n.id));
+                for c in comps {
+                    o.insert(c.as_str().into(), json!(x[c.index()]));
+                }
+                Value::Object(o)
+            })
             .collect();
         let (status, message) = match &r.outcome {
             StepOutcome::Completed => ("completed", String::new()),

@@ -96,13 +96,14 @@ fn vector_statics_collapse(scene: &Scene) -> f64 {
     let (tip, f) = fr
         .nodes
         .iter()
-        .find(|n| n.load != [0.0; 3])
+        .find(|n| n.load != [0.0; 6])
         .map(|n| (n, n.load))
         .unwrap();
     // force vector and its point
     let force = match fr.model {
-        Model::Grillage => [0.0, 0.0, f[0]],
+        Model::Grillage => [0.0, 0.0, f[3]],
         Model::Planar => [f[0], f[1], 0.0],
+        Model::Space => unreachable!("a planar or grillage scene"),
     };
     let mut best = f64::INFINITY;
     for e in &fr.elements {
@@ -119,6 +120,7 @@ fn vector_statics_collapse(scene: &Scene) -> f64 {
                 Model::Grillage => (-e.sin * m[0] + e.cos * m[1], e.cos * m[0] + e.sin * m[1]),
                 // moment about z, axial force along the axis
                 Model::Planar => (m[2], e.cos * force[0] + e.sin * force[1]),
+                Model::Space => unreachable!("a planar or grillage scene"),
             };
             let factor = match e.interaction {
                 Some(it) => Polygon::new(it.curve, it.facets)
@@ -167,7 +169,9 @@ fn compatibility_matches_3d_vector_kinematics() {
             let (e, which) = match *f {
                 MemberForce::Moment(k) => (sys.sections[k].element, k % 2),
                 MemberForce::Torque(e) => (e, 2),
-                MemberForce::Axial(_) => panic!("an axial force in a grillage"),
+                MemberForce::Axial(_) | MemberForce::Moment2(_) => {
+                    panic!("an axial force or a second moment in a grillage")
+                }
             };
             let el = &fr.elements[e];
             let (a, b) = (el.from, el.to);
@@ -194,7 +198,7 @@ fn compatibility_matches_3d_vector_kinematics() {
     // rigid-body motions of the whole grillage deform nothing
     let mut free = scene.frame.clone();
     for n in &mut free.nodes {
-        n.fixed = [false; 3];
+        n.fixed = [false; 6];
     }
     let sys = System::assemble_full(&free);
     for motion in 0..3 {
@@ -319,7 +323,7 @@ fn straight_out_of_plane_cantilever_reproduces_the_planar_path() {
             });
             let (ia, ip) = (idx[0], idx[1]);
             for node in 0..scene.frame.nodes.len() {
-                let [b, s] = a.response.intervals[ia].accelerations[node][0];
+                let [b, s] = a.response.intervals[ia].accelerations[node][3]; // z (slot 3)
                 let [bp, sp] = planar.response.intervals[ip].accelerations[node][1];
                 assert!(
                     ((b + s * l) - (bp + sp * l)).abs() < 1e-9 * (1.0 + (bp + sp * l).abs()),

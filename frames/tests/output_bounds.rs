@@ -135,7 +135,10 @@ fn a_small_scene_reports_everything() {
 fn streamed_json_equals_the_document_built_whole() {
     for (a, sel) in [
         (cantilever(8), OutputSelection::all()),
-        (cantilever(300), OutputSelection::default_for(&cantilever(300))),
+        (
+            cantilever(300),
+            OutputSelection::default_for(&cantilever(300)),
+        ),
         (cantilever(300), OutputSelection::all()),
     ] {
         let mut report = a.json_report(&sel).unwrap();

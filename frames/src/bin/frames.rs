@@ -226,15 +226,14 @@ fn run(cli: Cli) -> Result<(), FramesError> {
                 if let Some(n) = nodes {
                     sel.nodes = n;
                 }
-                let mut doc =
-                    analysis
-                        .json_report(&sel)
-                        .map_err(|message| FramesError::Scene {
-                            file: analysis.scene.file.clone(),
-                            line: 0,
-                            key: "--nodes".into(),
-                            message,
-                        })?;
+                let mut doc = analysis
+                    .json_report(&sel)
+                    .map_err(|message| FramesError::Scene {
+                        file: analysis.scene.file.clone(),
+                        line: 0,
+                        key: "--nodes".into(),
+                        message,
+                    })?;
                 if let Some((lambda, _)) = valid {
                     doc.insert("plcp_valid_up_to_lambda", lambda.into());
                     if let Some(c) = &analysis.time_stepping {
