@@ -39,10 +39,12 @@
 //! within 10% from `n = 50` on, `num-bigint` ahead at `n = 25, 100, 200`.
 
 mod certify;
+mod modular;
+mod solution;
 mod tableau;
 mod trace;
 
-pub use certify::{certify, Certificate, Failure};
+pub use certify::{certify, certify_with, Certificate, Engine, Failure};
 pub use trace::{trace, trace_from, ExactPath, EXACT_MAX_DIM};
 
 use num_bigint::BigInt;
