@@ -113,7 +113,7 @@ pub enum Engine {
     /// `B x = b`), `O((p + n)^3)` word operations per segment; the
     /// fraction-free tableau takes over where a basis is not square (a
     /// dependent equality row), or the lifting does not apply (a prime
-    /// dividing `det B` three times, entries of 62 bits or more).
+    /// dividing `det B` three times).
     #[default]
     Modular,
     /// The fraction-free tableau `det(B) B^-1 [A | q | d]` (Edmonds'
@@ -435,7 +435,7 @@ fn run<T: Scalar>(
             .chain((0..p).filter(|_| all_u))
             .collect();
         // a square basis by p-adic lifting; else (an artificial left in a
-        // dependent row, a prime dividing det B, entries too large) on the
+        // dependent row, three primes dividing det B) on the
         // tableau, which handles every case
         let modular = match engine {
             Engine::Modular => Solution::modular(&scaled, &fresh, &target),

@@ -29,19 +29,21 @@
 //!
 //! Primes are below `2^27`: products of residues fit in 54 bits, so dot
 //! products accumulate 256 terms in a `u64` before one reduction (and
-//! vectorize); residuals fit in `i128` once the right-hand side's large
-//! entries have been divided down.
+//! vectorize). `B x_i` is formed in `i128` from `B`'s 64-bit digits (one
+//! digit for most rows: a row scaled to integers has 53 bits plus the spread
+//! of its exponents); the residuals are `i128` when `B` has one digit and the
+//! right-hand side's large entries have been divided down, big integers
+//! otherwise.
 
 use num_bigint::BigInt;
 use num_integer::Integer;
 use num_traits::{One, Signed, ToPrimitive, Zero};
 
 /// An integer matrix by columns: `(row, value)` for each nonzero.
-pub(crate) type Cols = [Vec<(usize, i64)>];
+pub(crate) type Cols = [Vec<(usize, BigInt)>];
 
-/// Matrix entries must be below `2^62` in magnitude (the lifting's `i128`
-/// products then have room for thousands of terms).
-pub(crate) const ENTRY_BITS: u64 = 62;
+/// `B` by 64-bit digits: `B = sum_t 2^(64 t) D_t`, each `D_t` by columns.
+type Digits = [Vec<Vec<(usize, i128)>>];
 
 /// Residuals are kept as `i128` once all are below `2^100`.
 const SMALL_BITS: u64 = 100;
@@ -120,9 +122,6 @@ impl Modp {
         }
         total
     }
-    fn of_i64(self, v: i64) -> u32 {
-        v.rem_euclid(self.p as i64) as u32
-    }
     fn of_i128(self, v: i128) -> u32 {
         v.rem_euclid(i128::from(self.p)) as u32
     }
@@ -152,8 +151,8 @@ impl Lu {
         // a: B by rows (residues)
         let mut a = vec![0u32; dim * dim];
         for (j, col) in cols.iter().enumerate() {
-            for &(i, v) in col {
-                a[i * dim + j] = md.of_i64(v);
+            for (i, v) in col {
+                a[i * dim + j] = md.of_big(v);
             }
         }
         let mut l = vec![0u32; dim * dim]; // by rows, unit diagonal implied
@@ -285,13 +284,13 @@ fn from_digits(digits: &[u32], pows: &[BigInt]) -> BigInt {
     lo + hi * &pows[level]
 }
 
-/// `u = n / d (mod m)` with `|n|, d <= sqrt(m / 2)`, by the Euclidean
-/// remainder sequence; `None` when no such fraction exists.
-fn reconstruct(u: &BigInt, m: &BigInt) -> Option<(BigInt, BigInt)> {
+/// `u = n / d (mod m)` with `2 n^2, 2 d^2 < m` (`|n|, d <= bound`, see
+/// [`reconstruct_all`]), by the Euclidean remainder sequence; `None` when no
+/// such fraction exists.
+fn reconstruct(u: &BigInt, m: &BigInt, bound: &BigInt) -> Option<(BigInt, BigInt)> {
     let (mut r0, mut r1) = (m.clone(), u.mod_floor(m));
     let (mut t0, mut t1) = (BigInt::zero(), BigInt::one());
-    // r1 small: 2 r1^2 < m
-    let small = |r: &BigInt| (r * r) * 2u32 < *m;
+    let small = |r: &BigInt| r.magnitude() <= bound.magnitude();
     while !small(&r1) {
         let (q, r) = r0.div_rem(&r1);
         r0 = std::mem::replace(&mut r1, r);
@@ -311,6 +310,8 @@ fn reconstruct(u: &BigInt, m: &BigInt) -> Option<(BigInt, BigInt)> {
 /// The common-denominator reconstruction of every component of `x mod m`.
 fn reconstruct_all(x: &[BigInt], m: &BigInt) -> Option<(Vec<BigInt>, BigInt)> {
     let half = m >> 1usize;
+    // 2 r^2 < m  <=>  |r| <= floor(sqrt((m - 1) / 2))
+    let bound = ((m - 1u32) >> 1usize).sqrt();
     let mut den = BigInt::one();
     let mut num: Vec<BigInt> = Vec::with_capacity(x.len());
     for xi in x {
@@ -318,11 +319,11 @@ fn reconstruct_all(x: &[BigInt], m: &BigInt) -> Option<(Vec<BigInt>, BigInt)> {
         if w > half {
             w -= m;
         }
-        if (&w * &w) * 2u32 < *m {
+        if w.magnitude() <= bound.magnitude() {
             num.push(w);
             continue;
         }
-        let (n, d) = reconstruct(&w, m)?;
+        let (n, d) = reconstruct(&w, m, &bound)?;
         for v in num.iter_mut() {
             *v *= &d;
         }
@@ -339,8 +340,8 @@ fn verify(cols: &Cols, num: &[BigInt], den: &BigInt, b: &[BigInt]) -> bool {
         if x.is_zero() {
             continue;
         }
-        for &(i, v) in col {
-            acc[i] += x * v;
+        for (i, v) in col {
+            acc[*i] += x * v;
         }
     }
     acc.iter().zip(b).all(|(a, bi)| *a == den * bi)
@@ -348,25 +349,36 @@ fn verify(cols: &Cols, num: &[BigInt], den: &BigInt, b: &[BigInt]) -> bool {
 
 /// The exact solutions `num / den` (`den > 0`) of `B x = b` for each
 /// right-hand side, verified; `None` if `B` is singular modulo the primes
-/// tried (perhaps singular), has an entry of `ENTRY_BITS` bits or more, or
-/// the lifting failed to verify.
+/// tried (perhaps singular), or the lifting failed to verify.
 pub(crate) fn solve(cols: &Cols, rhs: &[Vec<BigInt>]) -> Option<Vec<(Vec<BigInt>, BigInt)>> {
     let dim = cols.len();
-    if cols
+    let ndig = cols
         .iter()
         .flatten()
-        .any(|&(_, v)| v.unsigned_abs() >> ENTRY_BITS != 0)
-    {
-        return None;
+        .map(|(_, v)| v.bits().div_ceil(64) as usize)
+        .max()
+        .unwrap_or(1)
+        .max(1);
+    let mut bdig: Vec<Vec<Vec<(usize, i128)>>> = vec![vec![Vec::new(); dim]; ndig];
+    for (j, col) in cols.iter().enumerate() {
+        for (i, v) in col {
+            let neg = v.is_negative();
+            for (t, d) in v.magnitude().iter_u64_digits().enumerate() {
+                if d != 0 {
+                    let d = i128::from(d);
+                    bdig[t][j].push((*i, if neg { -d } else { d }));
+                }
+            }
+        }
     }
     primes().take(TRIES).find_map(|p| {
         let lu = Lu::factor(cols, dim, Modp::new(p))?;
-        rhs.iter().map(|b| lift(cols, &lu, b)).collect()
+        rhs.iter().map(|b| lift(cols, &bdig, &lu, b)).collect()
     })
 }
 
 /// Dixon's lifting for one right-hand side (see the module documentation).
-fn lift(cols: &Cols, lu: &Lu, b: &[BigInt]) -> Option<(Vec<BigInt>, BigInt)> {
+fn lift(cols: &Cols, bdig: &Digits, lu: &Lu, b: &[BigInt]) -> Option<(Vec<BigInt>, BigInt)> {
     let dim = cols.len();
     let md = lu.md;
     let p = md.p;
@@ -378,12 +390,7 @@ fn lift(cols: &Cols, lu: &Lu, b: &[BigInt]) -> Option<(Vec<BigInt>, BigInt)> {
     // has norm >= 1)
     let log_det: f64 = cols
         .iter()
-        .map(|c| {
-            log2_norm(
-                c.iter()
-                    .map(|&(_, v)| 64 - v.unsigned_abs().leading_zeros() as u64),
-            )
-        })
+        .map(|c| log2_norm(c.iter().map(|(_, v)| v.bits())))
         .sum();
     let log_b = log2_norm(b.iter().filter(|v| !v.is_zero()).map(|v| v.bits()));
     // balanced reconstruction (|num|, den <= sqrt(p^k / 2)) needs p^k above
@@ -412,20 +419,26 @@ fn lift(cols: &Cols, lu: &Lu, b: &[BigInt]) -> Option<(Vec<BigInt>, BigInt)> {
         for (d, &xi) in digits.iter_mut().zip(&x) {
             d.push(xi);
         }
-        // r <- (r - B x) / p
-        let mut bx = vec![0i128; dim];
-        for (col, &xj) in cols.iter().zip(&x) {
-            if xj == 0 {
-                continue;
-            }
-            let xj = i128::from(xj);
-            for &(i, v) in col {
-                bx[i] += i128::from(v) * xj;
-            }
-        }
+        // r <- (r - B x) / p, with B x = sum_t 2^(64 t) D_t x
+        let bx: Vec<Vec<i128>> = bdig
+            .iter()
+            .map(|dt| {
+                let mut bx = vec![0i128; dim];
+                for (col, &xj) in dt.iter().zip(&x) {
+                    if xj == 0 {
+                        continue;
+                    }
+                    let xj = i128::from(xj);
+                    for &(i, v) in col {
+                        bx[i] += v * xj;
+                    }
+                }
+                bx
+            })
+            .collect();
         res = match res {
             Residual::Small(mut r) => {
-                for (ri, bi) in r.iter_mut().zip(&bx) {
+                for (ri, bi) in r.iter_mut().zip(&bx[0]) {
                     *ri = (ri.wrapping_sub(*bi) as u128).wrapping_mul(inv128) as i128;
                 }
                 Residual::Small(r)
@@ -433,10 +446,17 @@ fn lift(cols: &Cols, lu: &Lu, b: &[BigInt]) -> Option<(Vec<BigInt>, BigInt)> {
             Residual::Big(r) => {
                 let r: Vec<BigInt> = r
                     .into_iter()
-                    .zip(&bx)
-                    .map(|(ri, &bi)| (ri - bi) / p)
+                    .enumerate()
+                    .map(|(i, mut ri)| {
+                        for (t, bt) in bx.iter().enumerate() {
+                            if bt[i] != 0 {
+                                ri -= BigInt::from(bt[i]) << (64 * t);
+                            }
+                        }
+                        ri / p
+                    })
                     .collect();
-                if r.iter().all(|v| v.bits() < SMALL_BITS) {
+                if bdig.len() == 1 && r.iter().all(|v| v.bits() < SMALL_BITS) {
                     Residual::Small(r.iter().map(|v| v.to_i128().expect("small")).collect())
                 } else {
                     Residual::Big(r)
@@ -489,21 +509,26 @@ mod tests {
     #[test]
     fn solves_a_small_system_exactly() {
         // B = [[2, 1], [1, 3]], b = (1, 2): x = (1/5, 3/5)
-        let cols = vec![vec![(0, 2), (1, 1)], vec![(0, 1), (1, 3)]];
+        let big = |c: Vec<Vec<(usize, i64)>>| -> Vec<Vec<(usize, BigInt)>> {
+            c.into_iter()
+                .map(|col| col.into_iter().map(|(i, v)| (i, BigInt::from(v))).collect())
+                .collect()
+        };
+        let cols = big(vec![vec![(0, 2), (1, 1)], vec![(0, 1), (1, 3)]]);
         let b = vec![BigInt::from(1), BigInt::from(2)];
         let sol = solve(&cols, &[b]).unwrap();
         let (num, den) = &sol[0];
         assert_eq!(num[0].clone() * 5, den.clone());
         assert_eq!(num[1].clone() * 5, den.clone() * 3);
         // a singular matrix: no answer
-        let cols = vec![vec![(0, 2), (1, 4)], vec![(0, 1), (1, 2)]];
+        let cols = big(vec![vec![(0, 2), (1, 4)], vec![(0, 1), (1, 2)]]);
         assert!(solve(&cols, &[vec![BigInt::from(1), BigInt::from(2)]]).is_none());
         assert!(!nonsingular(&cols));
     }
 
     #[test]
     fn large_right_hand_sides_and_many_digits() {
-        // a 12 x 12 matrix with 60-bit entries and a 300-bit right-hand side
+        // a 12 x 12 matrix with two-digit entries and a 300-bit right-hand side
         let dim = 12;
         let mut s = 0x9e3779b97f4a7c15u64;
         let mut rnd = || {
@@ -512,8 +537,14 @@ mod tests {
             s ^= s << 17;
             (s >> 4) as i64 - (1 << 59)
         };
-        let cols: Vec<Vec<(usize, i64)>> = (0..dim)
-            .map(|_| (0..dim).map(|i| (i, rnd())).collect())
+        // entries of 60 bits, and of 60 + 70 bits in every third column
+        let cols: Vec<Vec<(usize, BigInt)>> = (0..dim)
+            .map(|j| {
+                let shift = if j % 3 == 0 { 70usize } else { 0 };
+                (0..dim)
+                    .map(|i| (i, BigInt::from(rnd()) << shift))
+                    .collect()
+            })
             .collect();
         let b: Vec<BigInt> = (0..dim).map(|_| BigInt::from(rnd()) << 240usize).collect();
         let sol = solve(&cols, &[b.clone()]).unwrap();

@@ -16,8 +16,8 @@ use num_traits::{One, Signed, Zero};
 
 /// The problem's scaled integer rows by columns, for the lifting.
 pub(crate) struct Scaled {
-    /// Columns `u`, `z`, `w` (`None`: an entry too large for the lifting).
-    cols: Vec<Option<Vec<(usize, i64)>>>,
+    /// Columns `u`, `z`, `w`.
+    cols: Vec<Vec<(usize, BigInt)>>,
     q: Vec<BigInt>,
     d: Vec<BigInt>,
 }
@@ -32,10 +32,7 @@ impl Scaled {
                     .iter()
                     .enumerate()
                     .filter(|(_, row)| !row[c].is_zero())
-                    .map(|(i, row)| {
-                        let v = i64::try_from(&row[c]).ok()?;
-                        (v.unsigned_abs() >> modular::ENTRY_BITS == 0).then_some((i, v))
-                    })
+                    .map(|(i, row)| (i, row[c].clone()))
                     .collect()
             })
             .collect();
@@ -47,32 +44,21 @@ impl Scaled {
     }
 
     /// The columns `target` (one per row) as a square matrix, if all are
-    /// stored columns small enough for the lifting.
-    fn square(&self, target: &[usize]) -> Option<Vec<Vec<(usize, i64)>>> {
+    /// stored columns.
+    fn square(&self, target: &[usize]) -> Option<Vec<Vec<(usize, BigInt)>>> {
         if target.len() != self.q.len() {
             return None;
         }
-        target
-            .iter()
-            .map(|&c| self.cols.get(c).cloned().flatten())
-            .collect()
+        target.iter().map(|&c| self.cols.get(c).cloned()).collect()
     }
 
     /// The free block `M[0..p, 0..p]` (scaled rows) is nonsingular modulo a
     /// prime, which proves it nonsingular; false says nothing.
     pub fn free_block_nonsingular(&self, p: usize) -> bool {
-        let Some(cols) = (0..p)
-            .map(|c| {
-                self.cols
-                    .get(c)
-                    .cloned()
-                    .flatten()
-                    .map(|col| col.into_iter().filter(|&(i, _)| i < p).collect::<Vec<_>>())
-            })
-            .collect::<Option<Vec<_>>>()
-        else {
-            return false;
-        };
+        let cols: Vec<Vec<(usize, BigInt)>> = self.cols[..p]
+            .iter()
+            .map(|col| col.iter().filter(|(i, _)| *i < p).cloned().collect())
+            .collect();
         modular::nonsingular(&cols)
     }
 }
@@ -98,9 +84,9 @@ pub(crate) struct Solution {
 impl Solution {
     /// Solves the square basis `target` (stored columns, one per row) by
     /// p-adic lifting; `None` when it is not square, not provably
-    /// nonsingular modulo the primes tried, or too large for the lifting.
+    /// nonsingular modulo the primes tried, or the lifting fails.
     pub fn modular(scaled: &Scaled, t: &Tableau, target: &[usize]) -> Option<Self> {
-        let cols: Vec<Vec<(usize, i64)>> = scaled.square(target)?;
+        let cols: Vec<Vec<(usize, BigInt)>> = scaled.square(target)?;
         let cols: &Cols = &cols;
         let mut sol = modular::solve(cols, &[scaled.q.clone(), scaled.d.clone()])?;
         let (b, db) = sol.pop()?;
