@@ -547,7 +547,7 @@ mod tests {
             })
             .collect();
         let b: Vec<BigInt> = (0..dim).map(|_| BigInt::from(rnd()) << 240usize).collect();
-        let sol = solve(&cols, &[b.clone()]).unwrap();
+        let sol = solve(&cols, std::slice::from_ref(&b)).unwrap();
         assert!(verify(&cols, &sol[0].0, &sol[0].1, &b));
     }
 }
