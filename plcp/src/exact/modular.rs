@@ -308,14 +308,28 @@ fn reconstruct(u: &BigInt, m: &BigInt, bound: &BigInt) -> Option<(BigInt, BigInt
 }
 
 /// The common-denominator reconstruction of every component of `x mod m`.
-fn reconstruct_all(x: &[BigInt], m: &BigInt) -> Option<(Vec<BigInt>, BigInt)> {
+/// `x(i)` is the `i`-th component modulo `m`, formed only when needed: a
+/// lifting stopped too early fails on its first components, at little cost.
+///
+/// `den0` is a first guess of the common denominator (the previous
+/// right-hand side's, with the same `B`: both divide `det B`), which spares
+/// the Euclidean reconstruction when it is a multiple of this one's.
+fn reconstruct_all(
+    len: usize,
+    x: impl Fn(usize) -> BigInt,
+    m: &BigInt,
+    den0: &BigInt,
+) -> Option<(Vec<BigInt>, BigInt)> {
     let half = m >> 1usize;
     // 2 r^2 < m  <=>  |r| <= floor(sqrt((m - 1) / 2))
     let bound = ((m - 1u32) >> 1usize).sqrt();
-    let mut den = BigInt::one();
-    let mut num: Vec<BigInt> = Vec::with_capacity(x.len());
-    for xi in x {
-        let mut w = (xi * &den).mod_floor(m);
+    if den0.magnitude() > bound.magnitude() {
+        return None;
+    }
+    let mut den = den0.clone();
+    let mut num: Vec<BigInt> = Vec::with_capacity(len);
+    for i in 0..len {
+        let mut w = (x(i) * &den).mod_floor(m);
         if w > half {
             w -= m;
         }
@@ -328,6 +342,9 @@ fn reconstruct_all(x: &[BigInt], m: &BigInt) -> Option<(Vec<BigInt>, BigInt)> {
             *v *= &d;
         }
         den *= d;
+        if den.magnitude() > bound.magnitude() {
+            return None;
+        }
         num.push(n);
     }
     Some((num, den))
@@ -373,12 +390,24 @@ pub(crate) fn solve(cols: &Cols, rhs: &[Vec<BigInt>]) -> Option<Vec<(Vec<BigInt>
     }
     primes().take(TRIES).find_map(|p| {
         let lu = Lu::factor(cols, dim, Modp::new(p))?;
-        rhs.iter().map(|b| lift(cols, &bdig, &lu, b)).collect()
+        let mut out: Vec<(Vec<BigInt>, BigInt)> = Vec::with_capacity(rhs.len());
+        for b in rhs {
+            let den0 = out.last().map_or_else(BigInt::one, |s| s.1.clone());
+            out.push(lift(cols, &bdig, &lu, b, &den0)?);
+        }
+        Some(out)
     })
 }
 
-/// Dixon's lifting for one right-hand side (see the module documentation).
-fn lift(cols: &Cols, bdig: &Digits, lu: &Lu, b: &[BigInt]) -> Option<(Vec<BigInt>, BigInt)> {
+/// Dixon's lifting for one right-hand side (see the module documentation);
+/// `den0` is a guess of the denominator (see [`reconstruct_all`]).
+fn lift(
+    cols: &Cols,
+    bdig: &Digits,
+    lu: &Lu,
+    b: &[BigInt],
+    den0: &BigInt,
+) -> Option<(Vec<BigInt>, BigInt)> {
     let dim = cols.len();
     let md = lu.md;
     let p = md.p;
@@ -470,9 +499,9 @@ fn lift(cols: &Cols, bdig: &Digits, lu: &Lu, b: &[BigInt]) -> Option<(Vec<BigInt
                 let sq = last * last;
                 pows.push(sq);
             }
-            let xs: Vec<BigInt> = digits.iter().map(|d| from_digits(d, &pows)).collect();
             let m = BigInt::from(p).pow(k as u32);
-            if let Some((num, den)) = reconstruct_all(&xs, &m) {
+            let x = |i: usize| from_digits(&digits[i], &pows);
+            if let Some((num, den)) = reconstruct_all(dim, x, &m, den0) {
                 if verify(cols, &num, &den, b) {
                     return Some((num, den));
                 }
