@@ -556,6 +556,36 @@ mod tests {
     }
 
     #[test]
+    fn a_determinant_every_tried_prime_divides_gives_no_answer() {
+        // det B = the product of the primes tried: singular modulo each, so
+        // the caller falls back to the tableau (B is nonsingular)
+        let det = primes()
+            .take(TRIES)
+            .fold(BigInt::one(), |a, p| a * BigInt::from(p));
+        let cols = vec![vec![(0, det.clone())], vec![(1, BigInt::one())]];
+        assert!(solve(&cols, &[vec![BigInt::one(), BigInt::one()]]).is_none());
+        assert!(!nonsingular(&cols));
+        // det + 2 is 2 modulo each of them: solved by the first
+        let cols = vec![vec![(0, det + 2)], vec![(1, BigInt::one())]];
+        assert!(solve(&cols, &[vec![BigInt::one(), BigInt::one()]]).is_some());
+    }
+
+    #[test]
+    fn the_exact_check_rejects_a_wrong_solution() {
+        let cols: Vec<Vec<(usize, BigInt)>> = vec![
+            vec![(0, BigInt::from(2)), (1, BigInt::from(1))],
+            vec![(0, BigInt::from(1)), (1, BigInt::from(3))],
+        ];
+        let b = vec![BigInt::from(1), BigInt::from(2)];
+        let (num, den) = solve(&cols, std::slice::from_ref(&b)).unwrap().remove(0);
+        assert!(verify(&cols, &num, &den, &b));
+        let mut wrong = num.clone();
+        wrong[1] += 1;
+        assert!(!verify(&cols, &wrong, &den, &b));
+        assert!(!verify(&cols, &num, &(den + 1), &b));
+    }
+
+    #[test]
     fn large_right_hand_sides_and_many_digits() {
         // a 12 x 12 matrix with two-digit entries and a 300-bit right-hand side
         let dim = 12;
