@@ -22,11 +22,13 @@
 //! that cannot be basic (a singular free block) are held at zero, which gives
 //! one of the solutions if any exists with this `S_k`.
 
-use super::tableau::Tableau;
+use super::solution::{Scaled, Solution};
+use super::tableau::{col_of, Tableau};
 use super::{rational_to_f64, rel_diff, short, to_rational};
 use crate::path::{Path, Status, Var};
 use crate::problem::Plcp;
 use crate::scalar::Scalar;
+use num_bigint::BigInt;
 use num_rational::BigRational;
 use num_traits::{Signed, Zero};
 use std::time::Instant;
@@ -53,8 +55,11 @@ pub struct Certificate {
     pub max_rel_diff: f64,
     /// Segments checked.
     pub segments: usize,
-    /// Pivots of the exact tableau.
+    /// Pivots of the fraction-free tableau (0 when every basis was solved by
+    /// p-adic lifting; see [`Engine`]).
     pub pivots: usize,
+    /// Bases solved by p-adic lifting ([`Engine::Modular`]).
+    pub modular: usize,
     /// Wall-clock seconds.
     pub seconds: f64,
 }
@@ -92,21 +97,46 @@ impl Certificate {
             "max_rel_diff": self.max_rel_diff,
             "segments": self.segments,
             "pivots": self.pivots,
+            "modular": self.modular,
             "seconds": self.seconds,
         })
     }
 }
 
+/// How [`certify_with`] finds the exact solution of each segment's basis.
+/// Both give the same certificate (the same checks on the same exact
+/// solutions); they differ in cost.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Engine {
+    /// Dixon's p-adic lifting on each square basis (an LU modulo a word-size
+    /// prime, lifting, rational reconstruction, then an exact check
+    /// `B x = b`), `O((p + n)^3)` word operations per segment; the
+    /// fraction-free tableau takes over where a basis is not square (a
+    /// dependent equality row), or the lifting does not apply (a prime
+    /// dividing `det B` three times).
+    #[default]
+    Modular,
+    /// The fraction-free tableau `det(B) B^-1 [A | q | d]` (Edmonds'
+    /// integer pivoting) for every basis: one exact pivot per basis change,
+    /// `O((p + n)^2)` operations on integers of thousands of bits each.
+    Bareiss,
+}
+
 /// Checks `path` exactly against `problem` (see the module documentation):
 /// the answer is [`Certificate::certified`] or names the first segment that
 /// fails and why. Works for every precision, form and storage (a sparse `M`
-/// is read through its dense copy). The cost is one exact pivot per basis
-/// change, each `O((p + n)^2)` operations on integers of up to the size of
-/// the basis' minors (see `docs/certification.md`).
+/// is read through its dense copy). Solves each basis by p-adic lifting
+/// ([`Engine::Modular`]); see `docs/certification.md` for the cost.
 pub fn certify<T: Scalar>(problem: &Plcp<T>, path: &Path<T>) -> Certificate {
+    certify_with(problem, path, Engine::Modular)
+}
+
+/// [`certify`] with the given [`Engine`] (the certificate is the same; the
+/// fraction-free one is kept as a reference and for comparisons).
+pub fn certify_with<T: Scalar>(problem: &Plcp<T>, path: &Path<T>, engine: Engine) -> Certificate {
     let timer = Instant::now();
     let mut cert = Certificate::default();
-    let result = run(problem, path, &mut cert);
+    let result = run(problem, path, engine, &mut cert);
     cert.failure = result.err();
     cert.seconds = timer.elapsed().as_secs_f64();
     cert
@@ -123,43 +153,58 @@ impl<T: Scalar> Path<T> {
 /// basic `z`, `w` is nonnegative, or the variable that is negative everywhere.
 type Interval = (Option<BigRational>, Option<BigRational>);
 
-fn interval(t: &Tableau) -> Result<Interval, String> {
-    let (mut lo, mut hi): Interval = (None, None);
-    for i in 0..t.basis.len() {
-        let c = t.basis[i];
-        if c >= t.ncol() {
+fn interval(s: &Solution) -> Result<Interval, String> {
+    // the roots -a_i / b_i compared by their numerators (the denominators are
+    // common and positive), reduced once at the end
+    let mut lo: Option<(&BigInt, &BigInt)> = None;
+    let mut hi: Option<(&BigInt, &BigInt)> = None;
+    // -a1/b1 > -a2/b2 for the numerators of two roots
+    let greater = |x: (&BigInt, &BigInt), y: (&BigInt, &BigInt)| {
+        let (l, r) = (-(x.0 * y.1), -(y.0 * x.1));
+        // divide by b1 b2: keep the order when b1 b2 > 0
+        if x.1.is_positive() == y.1.is_positive() {
+            l > r
+        } else {
+            l < r
+        }
+    };
+    for i in 0..s.basis.len() {
+        let c = s.basis[i];
+        let (a, b) = s.numerators(i);
+        if c >= s.ncol() {
             // an artificial of a dependent equality row: the row must be 0 = 0
-            let (a, b) = t.affine(i);
             if !a.is_zero() || !b.is_zero() {
+                let (a, b) = s.affine(i);
                 return Err(format!(
                     "equality row {} cannot hold with this basis (it reads 0 = {} + L {})",
-                    c - t.ncol(),
-                    short(&a),
-                    short(&b)
+                    c - s.ncol(),
+                    short(&a.reduced()),
+                    short(&b.reduced())
                 ));
             }
             continue;
         }
-        if !t.signed(c) {
+        if !s.signed(c) {
             continue;
         }
-        let (a, b) = t.affine(i);
-        let var = t.var_of(c).expect("a z or w column");
+        let var = s.var_of(c).expect("a z or w column");
         if b.is_zero() {
             if a.is_negative() {
-                return Err(format!("{var} = {} < 0 for every L", short(&a)));
+                return Err(format!(
+                    "{var} = {} < 0 for every L",
+                    short(&s.affine(i).0.reduced())
+                ));
             }
-        } else {
-            let root = -a / &b;
-            if b.is_positive() {
-                if lo.as_ref().is_none_or(|l| &root > l) {
-                    lo = Some(root);
-                }
-            } else if hi.as_ref().is_none_or(|h| &root < h) {
-                hi = Some(root);
+        } else if b.is_positive() {
+            if lo.is_none_or(|l| greater((a, b), l)) {
+                lo = Some((a, b));
             }
+        } else if hi.is_none_or(|h| greater(h, (a, b))) {
+            hi = Some((a, b));
         }
     }
+    let lo = lo.map(|(a, b)| s.root(a, b));
+    let hi = hi.map(|(a, b)| s.root(a, b));
     if let (Some(l), Some(h)) = (&lo, &hi) {
         if l > h {
             return Err(format!(
@@ -205,7 +250,7 @@ type Group<'a, T> = (&'a str, usize, usize, &'a faer::Col<T>, &'a faer::Col<T>);
 /// basis in `t`, at the exact start and end (the slopes for an unbounded
 /// segment), relative to the largest entry of each vector.
 fn check_values<T: Scalar>(
-    t: &Tableau,
+    t: &Solution,
     seg: &crate::path::Segment<T>,
     start: &BigRational,
     end: Option<&BigRational>,
@@ -223,30 +268,38 @@ fn check_values<T: Scalar>(
     if let Some(e) = end {
         at.push(e.clone());
     }
+    // the exact values of each group at each end, rounded once
+    let exact: Vec<Vec<Vec<f64>>> = groups
+        .iter()
+        .map(|&(_, c0, len, _, _)| {
+            at.iter()
+                .map(|l| {
+                    (0..len)
+                        .map(|i| rational_to_f64(&t.value(c0 + i, l)))
+                        .collect()
+                })
+                .collect()
+        })
+        .collect();
     // one scale for the whole segment: its largest exact value at either end,
     // or slope times max(1, |L|), over z, w and u (a vector that is zero at
     // one end, as at a degenerate start, is measured against the rest)
     let mut scale = 0.0f64;
-    for (_, c0, len, _, dx) in groups {
-        for l in &at {
+    for ((_, _, len, _, dx), ex) in groups.iter().zip(&exact) {
+        for (l, ex) in at.iter().zip(ex) {
             let lf = rational_to_f64(l).abs().max(1.0);
-            for i in 0..len {
-                scale = scale
-                    .max(rational_to_f64(&t.value(c0 + i, l)).abs())
-                    .max(dx[i].to_f64().abs() * lf);
+            for i in 0..*len {
+                scale = scale.max(ex[i].abs()).max(dx[i].to_f64().abs() * lf);
             }
         }
     }
     if scale == 0.0 || !scale.is_finite() {
         return Ok(());
     }
-    for (name, c0, len, x_from, dx) in groups {
-        for l in &at {
+    for ((name, c0, len, x_from, dx), ex) in groups.into_iter().zip(&exact) {
+        for (l, exact) in at.iter().zip(ex) {
             // the float value at the exact L, from the segment's affine form
             let dl = rational_to_f64(&(l - &from));
-            let exact: Vec<f64> = (0..len)
-                .map(|i| rational_to_f64(&t.value(c0 + i, l)))
-                .collect();
             let float: Vec<f64> = (0..len)
                 .map(|i| x_from[i].to_f64() + dx[i].to_f64() * dl)
                 .collect();
@@ -264,11 +317,8 @@ fn check_values<T: Scalar>(
         }
         if end.is_none() && seg.unbounded {
             // the slopes (the ray's direction)
-            let one = BigRational::from_integer(1.into());
             let exact: Vec<f64> = (0..len)
-                .map(|i| {
-                    rational_to_f64(&(t.value(c0 + i, &(start + &one)) - t.value(c0 + i, start)))
-                })
+                .map(|i| rational_to_f64(&t.slope(c0 + i)))
                 .collect();
             for i in 0..len {
                 let err = (exact[i] - dx[i].to_f64()).abs() / scale;
@@ -286,7 +336,7 @@ fn check_values<T: Scalar>(
 }
 
 /// The value of the basic or nonbasic variable `v` at `lambda`.
-fn value_at(t: &Tableau, v: Var, lambda: &BigRational) -> BigRational {
+fn value_at(t: &Solution, v: Var, lambda: &BigRational) -> BigRational {
     match t.col_of(v) {
         Some(c) => t.value(c, lambda),
         None => BigRational::zero(),
@@ -296,14 +346,30 @@ fn value_at(t: &Tableau, v: Var, lambda: &BigRational) -> BigRational {
 fn run<T: Scalar>(
     problem: &Plcp<T>,
     path: &Path<T>,
+    engine: Engine,
     cert: &mut Certificate,
 ) -> Result<(), Failure> {
     let (p, n) = (problem.free(), problem.n());
-    let mut t = Tableau::new(problem);
-    let left = t.pivot_in_free();
-    cert.pivots += p - left;
-    // with a singular free block `u` is not unique: its values are not compared
-    let u_unique = left == 0;
+    let fresh = Tableau::new(problem);
+    let scaled = Scaled::new(&fresh);
+    // the fraction-free tableau, brought to life only when a basis needs it
+    let mut tableau: Option<Tableau> = None;
+    let bareiss = |cert: &mut Certificate| -> (Tableau, usize) {
+        let mut t = Tableau::new(problem);
+        let left = t.pivot_in_free();
+        cert.pivots += p - left;
+        (t, left)
+    };
+    // with a singular free block `u` is not unique: its values are not
+    // compared (a nonsingular block modulo a prime is nonsingular; else the
+    // tableau's pivots decide, as they did before the lifting)
+    let u_unique = if engine == Engine::Modular && scaled.free_block_nonsingular(p) {
+        true
+    } else {
+        let (t, left) = bareiss(cert);
+        tableau = Some(t);
+        left == 0
+    };
     let limit = T::eps().to_f64().sqrt();
     let fail = |segment: usize, reason: String| Failure { segment, reason };
     let lambda_max = path.lambda_max.map(to_rational);
@@ -320,12 +386,13 @@ fn run<T: Scalar>(
                     } else {
                         Var::W(i)
                     };
-                    t.col_of(v).expect("a pair")
+                    col_of(p, n, v).expect("a pair")
                 })
                 .chain(0..p)
                 .collect();
-            pivot_to(&mut t, &basis, &mut cert.pivots);
-            let (lo, hi) = interval(&t).map_err(|r| fail(0, r))?;
+            let t = tableau.get_or_insert_with(|| bareiss(cert).0);
+            pivot_to(t, &basis, &mut cert.pivots);
+            let (lo, hi) = interval(&Solution::from_tableau(t)).map_err(|r| fail(0, r))?;
             if lo.as_ref().is_some_and(|l| l > &start) || hi.as_ref().is_some_and(|h| h < &start) {
                 return Err(fail(
                     0,
@@ -364,10 +431,27 @@ fn run<T: Scalar>(
         let target: Vec<usize> = seg
             .basis
             .iter()
-            .map(|v| t.col_of(*v).expect("checked"))
+            .map(|v| col_of(p, n, *v).expect("checked"))
             .chain((0..p).filter(|_| all_u))
             .collect();
-        pivot_to(&mut t, &target, &mut cert.pivots);
+        // a square basis by p-adic lifting; else (an artificial left in a
+        // dependent row, three primes dividing det B) on the
+        // tableau, which handles every case
+        let modular = match engine {
+            Engine::Modular => Solution::modular(&scaled, &fresh, &target),
+            Engine::Bareiss => None,
+        };
+        let t = match modular {
+            Some(s) => {
+                cert.modular += 1;
+                s
+            }
+            None => {
+                let t = tableau.get_or_insert_with(|| bareiss(cert).0);
+                pivot_to(t, &target, &mut cert.pivots);
+                Solution::from_tableau(t)
+            }
+        };
         let start_k = start.clone();
         // 2. feasible where it starts
         let (lo, hi) = interval(&t).map_err(|r| fail(k, r))?;
@@ -382,7 +466,10 @@ fn run<T: Scalar>(
                 })
                 .and_then(|i| t.var_of(t.basis[i]))
                 .map_or(String::new(), |v| {
-                    format!(" ({v} = {} there)", short(&value_at(&t, v, &start)))
+                    format!(
+                        " ({v} = {} there)",
+                        short(&value_at(&t, v, &start).reduced())
+                    )
                 });
             return Err(fail(
                 k,
@@ -444,7 +531,7 @@ fn run<T: Scalar>(
         if let Some(e) = &end {
             if let Some(bp) = path.breakpoints.iter().find(|b| b.segment == k + 1) {
                 let lv = bp.leaving;
-                let in_basis = t.col_of(lv).is_some_and(|c| t.basic[c]);
+                let in_basis = t.col_of(lv).is_some_and(|c| t.is_basic(c));
                 if matches!(lv, Var::Z(_) | Var::W(_)) && in_basis {
                     let v = value_at(&t, lv, e);
                     if !v.is_zero() {
@@ -452,7 +539,7 @@ fn run<T: Scalar>(
                             k,
                             format!(
                                 "the breakpoint's leaving variable {lv} is {} at the segment's exact end L = {}, not zero (the float breakpoint is L = {:e})",
-                                short(&v),
+                                short(&v.reduced()),
                                 short(e),
                                 bp.lambda.to_f64()
                             ),

@@ -23,7 +23,9 @@
 //! `L = -T_iq / T_id`.
 //!
 //! * [`certify`] (certify.rs) takes a float path and, segment by segment,
-//!   pivots the segment's basis in, solves it exactly, checks that it is
+//!   solves the segment's basis exactly (by p-adic lifting, modular.rs, with
+//!   an exact check of the solution; on the tableau above where the basis is
+//!   not square, solution.rs holds either answer), checks that it is
 //!   complementary, that the equality rows hold, that every basic `z`, `w` is
 //!   nonnegative on the segment's exact interval, that the exact breakpoints
 //!   chain (each segment starts where the previous one ended exactly), and that
@@ -39,10 +41,12 @@
 //! within 10% from `n = 50` on, `num-bigint` ahead at `n = 25, 100, 200`.
 
 mod certify;
+mod modular;
+mod solution;
 mod tableau;
 mod trace;
 
-pub use certify::{certify, Certificate, Failure};
+pub use certify::{certify, certify_with, Certificate, Engine, Failure};
 pub use trace::{trace, trace_from, ExactPath, EXACT_MAX_DIM};
 
 use num_bigint::BigInt;

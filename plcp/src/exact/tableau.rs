@@ -13,6 +13,38 @@ use rayon::prelude::*;
 /// Below this many entries a pivot runs on one thread.
 const PAR_MIN_ENTRIES: usize = 4096;
 
+/// The column of variable `v` with `p` free variables and `n` pairs (see
+/// [`Tableau`]); artificial variables come after the stored columns.
+pub(crate) fn col_of(p: usize, n: usize, v: Var) -> Option<usize> {
+    let ncol = p + 2 * n + 4;
+    match v {
+        Var::U(j) if j < p => Some(j),
+        Var::Z(i) if i < n => Some(p + i),
+        Var::W(i) if i < n => Some(p + n + i),
+        Var::Lambda => Some(p + 2 * n + 1),
+        Var::Artificial(r) if r < p => Some(ncol + r),
+        _ => None,
+    }
+}
+
+/// The variable of column `c` (`None` for `z0` and the right-hand sides).
+pub(crate) fn var_of(p: usize, n: usize, c: usize) -> Option<Var> {
+    let ncol = p + 2 * n + 4;
+    if c < p {
+        Some(Var::U(c))
+    } else if c < p + n {
+        Some(Var::Z(c - p))
+    } else if c < p + 2 * n {
+        Some(Var::W(c - p - n))
+    } else if c == p + 2 * n + 1 {
+        Some(Var::Lambda)
+    } else if c >= ncol {
+        Some(Var::Artificial(c - ncol))
+    } else {
+        None
+    }
+}
+
 /// Columns: `u` (p), `z` (n), `w` (n), the start phase's artificial `z0`, the
 /// parameter `L` as a variable (the tracer's second phase), then the two
 /// right-hand sides `q` and `d`. Artificial variables of the equality rows
@@ -52,32 +84,11 @@ impl Tableau {
         self.p + 2 * self.n + 3
     }
     pub fn col_of(&self, v: Var) -> Option<usize> {
-        let (p, n) = (self.p, self.n);
-        match v {
-            Var::U(j) if j < p => Some(j),
-            Var::Z(i) if i < n => Some(p + i),
-            Var::W(i) if i < n => Some(p + n + i),
-            Var::Lambda => Some(self.lam()),
-            Var::Artificial(r) if r < p => Some(self.ncol() + r),
-            _ => None,
-        }
+        col_of(self.p, self.n, v)
     }
     /// The variable of column `c` (`None` for `z0` and the right-hand sides).
     pub fn var_of(&self, c: usize) -> Option<Var> {
-        let (p, n) = (self.p, self.n);
-        if c < p {
-            Some(Var::U(c))
-        } else if c < p + n {
-            Some(Var::Z(c - p))
-        } else if c < p + 2 * n {
-            Some(Var::W(c - p - n))
-        } else if c == self.lam() {
-            Some(Var::Lambda)
-        } else if c >= self.ncol() {
-            Some(Var::Artificial(c - self.ncol()))
-        } else {
-            None
-        }
+        var_of(self.p, self.n, c)
     }
     /// True for `z`, `w` and `z0`: the variables that must stay nonnegative.
     pub fn signed(&self, c: usize) -> bool {
@@ -205,27 +216,6 @@ impl Tableau {
             BigRational::new(row[self.qc()].clone(), self.det.clone()),
             BigRational::new(row[self.dc()].clone(), self.det.clone()),
         )
-    }
-
-    /// The value of the variable of column `c` at `L = l`, unscaled (`w` is
-    /// stored times its row's power of two): zero when it is not basic.
-    pub fn value(&self, c: usize, l: &BigRational) -> BigRational {
-        let Some(i) = self.row_of(c) else {
-            return BigRational::zero();
-        };
-        let (a, b) = self.affine(i);
-        let v = a + b * l;
-        let (p, n) = (self.p, self.n);
-        if c >= p + n && c < p + 2 * n {
-            let e = self.row_exp[c - n];
-            if e >= 0 {
-                v * BigRational::from_integer(BigInt::one() << e as usize)
-            } else {
-                v / BigRational::from_integer(BigInt::one() << (-e) as usize)
-            }
-        } else {
-            v
-        }
     }
 
     /// The sign of `det`: entries times it are those of a tableau with `det > 0`.
