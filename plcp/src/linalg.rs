@@ -164,6 +164,32 @@ pub fn matvec<T: Scalar>(a: MatRef<'_, T>, x: faer::ColRef<'_, T>) -> Col<T> {
     y
 }
 
+/// [`matvec`] into `y` (of `a.nrows()` entries; no allocation): the same
+/// kernel, so the same numbers.
+pub fn matvec_into<T: Scalar>(a: MatRef<'_, T>, x: faer::ColRef<'_, T>, y: &mut Col<T>) {
+    if T::NATIVE && a.ncols() > 0 {
+        faer::linalg::matmul::matmul(
+            y.as_mat_mut(),
+            faer::Accum::Replace,
+            a,
+            x.as_mat(),
+            T::one(),
+            faer::Par::Seq,
+        );
+        return;
+    }
+    y.as_mut().fill(T::zero());
+    for k in 0..a.ncols() {
+        let f = x[k];
+        if f != T::zero() {
+            for i in 0..a.nrows() {
+                let v = y[i] + a[(i, k)] * f;
+                y[i] = v;
+            }
+        }
+    }
+}
+
 /// faer's LU with partial pivoting and its inverse, as
 /// `Mat::partial_piv_lu().inverse()` computes them but with the parallelism
 /// given: faer's own reads the global one, and asking rayon for its number of

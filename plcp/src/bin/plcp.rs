@@ -253,6 +253,10 @@ fn lcp<T: Scalar>(file: &std::path::Path) -> Result<String, InputError> {
 }
 
 fn run(command: Command) -> Result<String, InputError> {
+    // the process's one-time costs (CPU feature detection, first touch of
+    // the engine's code: see plcp::warm_up) before the input is read, so
+    // that the solve's timing is the solve's
+    plcp::warm_up();
     match command {
         Command::Solve {
             file,
