@@ -171,3 +171,11 @@ fn lean_steps_equal_full_steps_and_cold_solves() {
         }
     }
 }
+
+/// `plcp::warm_up` solves its small problem and steps its solver (it
+/// reports whether both reached their ends: a warm-up that failed would
+/// leave the first real solve paying the one-time costs).
+#[test]
+fn warm_up_solves_its_problem() {
+    assert!(plcp::warm_up());
+}
