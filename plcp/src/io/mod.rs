@@ -143,6 +143,7 @@ pub(crate) fn convert<T: Scalar>(what: &str, position: &str, v: f64) -> Result<T
 /// [`convert`] with the position formatted only when the value is rejected:
 /// a reader that converts millions of entries formatted a position string
 /// for each (a fifth of the reading time of `plcp sequence` at n = 50).
+#[cfg(feature = "json")]
 #[inline]
 pub(crate) fn convert_with<T: Scalar>(
     what: &str,
