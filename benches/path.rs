@@ -184,7 +184,9 @@ fn clarabel(c: &mut Criterion) {
 /// Everyday sizes on one thread (issue 20): a tiny problem (n = 2, one pivot)
 /// through `plcp::solve`, the full path at n = 20 .. 200 with
 /// `Settings::threads = Some(1)`, and the MPC loop through `plcp::Solver`
-/// (n = 50, 100 steps of size 0.1, per call of the whole loop).
+/// (n = 50, 100 steps of size 0.1, per call of the whole loop), with the
+/// full path of every step (`Solver::step`) and with the lean end
+/// (`Solver::step_end`).
 ///
 /// ```sh
 /// cargo bench --bench path -- everyday
@@ -236,6 +238,26 @@ fn everyday(c: &mut Criterion) {
                 std::hint::black_box(
                     solver
                         .step(g[k - 1].as_ref(), d.as_ref())
+                        .expect("valid data"),
+                );
+            }
+        },
+    );
+    // the same loop with the lean steps (plcp::StepEnd: no Path built)
+    let mut d = faer::Col::<f64>::zeros(50);
+    bench(
+        &mut group,
+        BenchmarkId::new("sequence-lean-100-steps", 50),
+        || {
+            let mut solver = plcp::Solver::new(m, &settings).expect("a valid matrix");
+            std::hint::black_box(solver.lcp_end(g[0].as_ref()).expect("valid data"));
+            for k in 1..g.len() {
+                for i in 0..50 {
+                    d[i] = g[k][i] - g[k - 1][i];
+                }
+                std::hint::black_box(
+                    solver
+                        .step_end(g[k - 1].as_ref(), d.as_ref())
                         .expect("valid data"),
                 );
             }

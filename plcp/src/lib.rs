@@ -95,7 +95,7 @@ pub use path::{Breakpoint, FreeBlockInfo, Info, Path, Point, Ray, Residual, Segm
 pub use problem::{Lcp, Plcp};
 pub use scalar::{infinity, Precision, Scalar};
 pub use settings::{BasisKind, Method, Settings, DEFAULT_REFACTOR_PERIOD};
-pub use solver::Solver;
+pub use solver::{warm_up, Solver, StepEnd};
 
 /// Traces the solution path of `problem` with the method chosen in `settings`.
 ///

@@ -96,8 +96,13 @@ pub fn matmul<T: Scalar>(a: MatRef<'_, T>, b: MatRef<'_, T>) -> Mat<T> {
 /// global parallelism ([`faer::get_global_parallelism`]; by default every
 /// core, `faer::set_global_parallelism(faer::Par::Seq)` keeps one); smaller
 /// ones stay on the calling thread, where waking the pool would cost more
-/// than it saves. A pass over `2^16` doubles (512 KB) takes about 30 us.
-pub const PAR_MIN_ENTRIES: usize = 1 << 16;
+/// than it saves. A pass over `2^19` doubles (4 MB) takes about 250 us.
+/// (It was `2^16`: on the 2-core machine of `docs/performance.md` the default
+/// then ran slower than one thread at n = 500 and 1000, 24 against 17 ms
+/// and 144 against 112 ms, in the same quiet run; from `2^19` the passes of
+/// the pivots stay on the calling thread up to n = 1000 on that family, and
+/// the refactorisations of blocks of order 322 and more still use the pool.)
+pub const PAR_MIN_ENTRIES: usize = 1 << 19;
 
 /// The parallelism for a pass over `entries` matrix entries (see [`PAR_MIN_ENTRIES`]).
 pub fn par_for(entries: usize) -> faer::Par {
@@ -162,6 +167,32 @@ pub fn matvec<T: Scalar>(a: MatRef<'_, T>, x: faer::ColRef<'_, T>) -> Col<T> {
         }
     }
     y
+}
+
+/// [`matvec`] into `y` (of `a.nrows()` entries; no allocation): the same
+/// kernel, so the same numbers.
+pub fn matvec_into<T: Scalar>(a: MatRef<'_, T>, x: faer::ColRef<'_, T>, y: &mut Col<T>) {
+    if T::NATIVE && a.ncols() > 0 {
+        faer::linalg::matmul::matmul(
+            y.as_mat_mut(),
+            faer::Accum::Replace,
+            a,
+            x.as_mat(),
+            T::one(),
+            faer::Par::Seq,
+        );
+        return;
+    }
+    y.as_mut().fill(T::zero());
+    for k in 0..a.ncols() {
+        let f = x[k];
+        if f != T::zero() {
+            for i in 0..a.nrows() {
+                let v = y[i] + a[(i, k)] * f;
+                y[i] = v;
+            }
+        }
+    }
 }
 
 /// faer's LU with partial pivoting and its inverse, as

@@ -121,7 +121,7 @@ pub struct Settings<T: Scalar> {
     /// Threads for the large products of the block basis (its refactorisation
     /// and the flush of pending updates). `Some(1)`: the calling thread only;
     /// `Some(k)`: up to `k` threads of rayon's pool; `None` (default): by size,
-    /// the calling thread for products under 2^16 (`PAR_MIN_ENTRIES`)
+    /// the calling thread for products under 2^19 (`PAR_MIN_ENTRIES`)
     /// entries and faer's global parallelism above (so everyday sizes never
     /// wake a pool). The arithmetic, and so the path, is the same either way.
     pub threads: Option<usize>,

@@ -19,7 +19,7 @@
 
 use crate::error::PlcpError;
 use crate::path::{Info, Path, Point, Status, Var};
-use crate::pivoting::{finish_path, run_path, start_phase, Engine, Recorder};
+use crate::pivoting::{finish_lean, finish_path, run_path, start_phase, Engine, Recorder};
 use crate::scalar::Scalar;
 use crate::settings::{Method, Settings};
 use faer::{Col, ColRef, MatRef};
@@ -47,6 +47,36 @@ pub struct Solver<'a, T: Scalar> {
     /// nonbasic; `None` before the first call and after a path that did not
     /// reach its end.
     engine: Option<Engine<'a, T>>,
+    /// The breakpoints of the last lean trace (buffers kept between steps).
+    rec: Recorder<T>,
+    /// The result of the last lean call ([`Self::step_end`]).
+    last: StepEnd<T>,
+    /// A zero direction for [`Self::lcp_end`].
+    zeros: Col<T>,
+}
+
+/// The lean result of one call of the solver ([`Solver::step_end`],
+/// [`Solver::lcp_end`], [`Solver::path_end`]): what the MPC loop reads, no
+/// segments or breakpoints. Statuses and the residual guard as in [`Path`].
+#[derive(Clone, Debug)]
+pub struct StepEnd<T: Scalar> {
+    /// How the path ended (a success whose end residual exceeds `sqrt(eps)`
+    /// is `IllConditioned`, as in [`crate::solve`]).
+    pub status: Status,
+    /// Why it ended where it did, when not `Reached` (empty otherwise).
+    pub message: String,
+    /// The end point (`u` empty: standard form).
+    pub end: Point<T>,
+    /// Pivots of this call (the start phase's included on a cold start).
+    pub pivots: usize,
+    /// Pivots of the start phase (0 when the call started warm).
+    pub start_pivots: usize,
+    /// Whether the call started from where the last one ended.
+    pub warm: bool,
+    /// The end point's residual on the data ([`crate::residual::residual_parts`]).
+    pub residual: crate::path::Residual,
+    /// Wall time of the call (seconds).
+    pub solve_seconds: f64,
 }
 
 impl<'a, T: Scalar> Solver<'a, T> {
@@ -73,10 +103,28 @@ impl<'a, T: Scalar> Solver<'a, T> {
                 why: "the solver object traces by Lemke's rule".into(),
             });
         }
+        let n = m.nrows();
         Ok(Self {
             m,
             settings,
             engine: None,
+            rec: Recorder::lean(),
+            last: StepEnd {
+                status: Status::Reached,
+                message: String::new(),
+                end: Point {
+                    lambda: T::zero(),
+                    z: Col::zeros(n),
+                    w: Col::zeros(n),
+                    u: Col::zeros(0),
+                },
+                pivots: 0,
+                start_pivots: 0,
+                warm: false,
+                residual: Default::default(),
+                solve_seconds: 0.0,
+            },
+            zeros: Col::zeros(n),
         })
     }
 
@@ -100,82 +148,20 @@ impl<'a, T: Scalar> Solver<'a, T> {
         d: ColRef<'_, T>,
         lambda_max: T,
     ) -> Result<Path<T>, PlcpError> {
-        let n = self.m.nrows();
-        for (what, v) in [("q", q), ("d", d)] {
-            if v.nrows() != n {
-                return Err(PlcpError::Dimension {
-                    what: what.into(),
-                    expected: format!("{n} entries"),
-                    found: format!("{} entries", v.nrows()),
-                });
-            }
-            for i in 0..n {
-                crate::problem::check_entry(what, || format!("[{i}]"), v[i])?;
-            }
-        }
+        self.check_data(q, d)?;
         let timer = std::time::Instant::now();
-        let (q, d) = (q.to_owned(), d.to_owned());
         let mut info = Info {
             method: "lemke",
             precision: T::NAME,
             ..Info::default()
         };
-        // where the last path ended, if that is a feasible start for these data
-        let mut warm = self.engine.take().and_then(|mut eng| {
-            match eng.retarget(q.clone(), d.clone(), T::zero()) {
-                None => Some(eng),
-                Some(why) => {
-                    info.warm_start_note = format!("the last basis not used: {why}");
-                    None
-                }
-            }
-        });
-        let was_warm = warm.is_some();
-        if warm.is_none() {
-            let start: Vec<Var> = (0..n).map(Var::W).collect();
-            let cold = Engine::new(
-                self.m.into(),
-                0,
-                q.clone(),
-                d.clone(),
-                start,
-                T::zero(),
-                self.settings,
-            )
-            .ok()
-            .and_then(|mut eng| {
-                start_phase(&mut eng, &q, &d, T::zero(), self.settings.covering.as_ref())
-                    .ok()
-                    .map(|_| eng)
-            });
-            match cold {
-                Some(eng) => {
-                    info.start_pivots = eng.pivots;
-                    warm = Some(eng);
-                }
-                None => {
-                    // the start failed: the whole path as one call reports how
-                    let mut path = run_path(
-                        self.m.into(),
-                        0,
-                        &q,
-                        &d,
-                        T::zero(),
-                        Some(lambda_max),
-                        (0..n).map(Var::W).collect(),
-                        self.settings,
-                        Method::Lemke,
-                        "lemke",
-                        Default::default(),
-                    );
-                    self.measure(&mut path, &q, &d);
-                    path.info.solve_seconds = timer.elapsed().as_secs_f64();
-                    return Ok(path);
-                }
-            }
-        }
-        let mut eng = warm.expect("a warm or cold engine");
-        info.warm_start = was_warm;
+        let Some((mut eng, was_warm)) = self.engine_for(q, d, &mut info) else {
+            // the start failed: the whole path as one call reports how
+            let (q, d) = (q.to_owned(), d.to_owned());
+            let mut path = self.cold_path(&q, &d, lambda_max);
+            path.info.solve_seconds = timer.elapsed().as_secs_f64();
+            return Ok(path);
+        };
         let mut path = finish_path(
             &mut eng,
             Recorder::new(),
@@ -185,7 +171,7 @@ impl<'a, T: Scalar> Solver<'a, T> {
             timer,
             was_warm,
         );
-        self.measure(&mut path, &q, &d);
+        self.measure(&mut path, q, d);
         // keep the engine where the path ended, as a complementary basis with
         // L nonbasic: the driver takes L's place (one pivot, no refactorisation)
         if path.status == Status::Reached {
@@ -206,12 +192,234 @@ impl<'a, T: Scalar> Solver<'a, T> {
         Ok(path)
     }
 
+    /// [`Self::lcp`] with the lean result [`StepEnd`] (no [`Path`]).
+    pub fn lcp_end(&mut self, q: ColRef<'_, T>) -> Result<&StepEnd<T>, PlcpError> {
+        let n = q.nrows();
+        if self.zeros.nrows() != n {
+            self.zeros = Col::zeros(n);
+        }
+        let d = core::mem::replace(&mut self.zeros, Col::zeros(0));
+        let out = self.path_end_inner(q, d.as_ref(), T::zero());
+        self.zeros = d;
+        out?;
+        Ok(&self.last)
+    }
+
+    /// [`Self::step`] with the lean result [`StepEnd`]: the end point, the
+    /// pivots, the status and the end residual, no [`Path`] (no segments:
+    /// the breakpoints are measured and refined as in [`Self::step`], so the
+    /// end is the same to the last bit). The result is kept in the solver
+    /// and lent out: a step that makes no pivot allocates only for its basic
+    /// values and entering column (the engine's solves) and the end residual.
+    pub fn step_end(
+        &mut self,
+        q: ColRef<'_, T>,
+        d: ColRef<'_, T>,
+    ) -> Result<&StepEnd<T>, PlcpError> {
+        self.path_end_inner(q, d, T::one())?;
+        Ok(&self.last)
+    }
+
+    /// [`Self::path`] with the lean result [`StepEnd`] (see [`Self::step_end`]).
+    pub fn path_end(
+        &mut self,
+        q: ColRef<'_, T>,
+        d: ColRef<'_, T>,
+        lambda_max: T,
+    ) -> Result<&StepEnd<T>, PlcpError> {
+        self.path_end_inner(q, d, lambda_max)?;
+        Ok(&self.last)
+    }
+
+    fn path_end_inner(
+        &mut self,
+        q: ColRef<'_, T>,
+        d: ColRef<'_, T>,
+        lambda_max: T,
+    ) -> Result<(), PlcpError> {
+        self.check_data(q, d)?;
+        let timer = std::time::Instant::now();
+        let n = q.nrows();
+        if self.last.end.z.nrows() != n {
+            self.last.end = Point {
+                lambda: T::zero(),
+                z: Col::zeros(n),
+                w: Col::zeros(n),
+                u: Col::zeros(0),
+            };
+        }
+        let mut info = Info::default();
+        let Some((mut eng, was_warm)) = self.engine_for(q, d, &mut info) else {
+            let (qo, dout) = (q.to_owned(), d.to_owned());
+            let path = self.cold_path(&qo, &dout, lambda_max);
+            let last = &mut self.last;
+            last.status = path.status;
+            last.message = path.message;
+            last.pivots = path.info.pivots;
+            last.start_pivots = path.info.start_pivots;
+            last.warm = false;
+            last.residual = path.info.residual;
+            last.end = path.end;
+            last.solve_seconds = timer.elapsed().as_secs_f64();
+            return Ok(());
+        };
+        let start_pivots = eng.pivots;
+        let lean = finish_lean(
+            &mut eng,
+            &mut self.rec,
+            Some(lambda_max),
+            &mut self.last.end,
+        );
+        let last = &mut self.last;
+        last.status = lean.status;
+        last.message = lean.message;
+        last.warm = was_warm;
+        last.start_pivots = if was_warm { 0 } else { start_pivots };
+        last.pivots = eng.pivots;
+        last.residual = crate::residual::residual_parts(self.m, q, d, 0, &last.end);
+        let limit = T::eps().to_f64().sqrt();
+        let worst = last.residual.worst();
+        if last.status.is_success() && (worst.is_nan() || worst > limit) {
+            // the guard of crate::solve (see crate::trace::guard_residual)
+            last.message = format!(
+                "the path's largest residual {worst:.3e} (equation {:.1e}, feasibility {:.1e}, complementarity {:.1e}) exceeds sqrt(eps) = {limit:.1e} in {}: the answer cannot be trusted; try a higher precision. {}",
+                last.residual.equation,
+                last.residual.feasibility,
+                last.residual.complementarity,
+                T::NAME,
+                last.message
+            );
+            last.status = Status::IllConditioned;
+        }
+        if last.status == Status::Reached {
+            match lean.reached {
+                Some((driver, theta)) if eng.row_of(Var::Lambda).is_some() => {
+                    if eng.settle(driver, theta).is_ok() {
+                        self.engine = Some(eng);
+                    }
+                }
+                _ => self.engine = Some(eng),
+            }
+        }
+        self.last.solve_seconds = timer.elapsed().as_secs_f64();
+        Ok(())
+    }
+
+    /// The entries of `q` and `d`: `n` each, finite.
+    fn check_data(&self, q: ColRef<'_, T>, d: ColRef<'_, T>) -> Result<(), PlcpError> {
+        let n = self.m.nrows();
+        for (what, v) in [("q", q), ("d", d)] {
+            if v.nrows() != n {
+                return Err(PlcpError::Dimension {
+                    what: what.into(),
+                    expected: format!("{n} entries"),
+                    found: format!("{} entries", v.nrows()),
+                });
+            }
+            for i in 0..n {
+                crate::problem::check_entry(what, || format!("[{i}]"), v[i])?;
+            }
+        }
+        Ok(())
+    }
+
+    /// The engine for data `q`, `d` at `L = 0`: where the last path ended if
+    /// that is a feasible start (`true`), else a cold start by Lemke's start
+    /// phase (`false`); `None` if the start failed.
+    fn engine_for(
+        &mut self,
+        q: ColRef<'_, T>,
+        d: ColRef<'_, T>,
+        info: &mut Info,
+    ) -> Option<(Engine<'a, T>, bool)> {
+        let warm = self
+            .engine
+            .take()
+            .and_then(|mut eng| match eng.retarget(q, d, T::zero()) {
+                None => Some(eng),
+                Some(why) => {
+                    info.warm_start_note = format!("the last basis not used: {why}");
+                    None
+                }
+            });
+        if let Some(eng) = warm {
+            info.warm_start = true;
+            return Some((eng, true));
+        }
+        let n = self.m.nrows();
+        let (q, d) = (q.to_owned(), d.to_owned());
+        let start: Vec<Var> = (0..n).map(Var::W).collect();
+        let mut eng = Engine::new(
+            self.m.into(),
+            0,
+            q.clone(),
+            d.clone(),
+            start,
+            T::zero(),
+            self.settings,
+        )
+        .ok()?;
+        start_phase(&mut eng, &q, &d, T::zero(), self.settings.covering.as_ref()).ok()?;
+        info.start_pivots = eng.pivots;
+        Some((eng, false))
+    }
+
+    /// The whole path as one call, after a failed start (it reports how).
+    fn cold_path(&self, q: &Col<T>, d: &Col<T>, lambda_max: T) -> Path<T> {
+        let n = self.m.nrows();
+        let mut path = run_path(
+            self.m.into(),
+            0,
+            q,
+            d,
+            T::zero(),
+            Some(lambda_max),
+            (0..n).map(Var::W).collect(),
+            self.settings,
+            Method::Lemke,
+            "lemke",
+            Default::default(),
+        );
+        self.measure(&mut path, q.as_ref(), d.as_ref());
+        path
+    }
+
     /// The end residual on the data, and the guard of [`crate::solve`].
-    fn measure(&self, path: &mut Path<T>, q: &Col<T>, d: &Col<T>) {
-        path.info.residual =
-            crate::residual::residual_parts(self.m, q.as_ref(), d.as_ref(), 0, &path.end);
+    fn measure(&self, path: &mut Path<T>, q: ColRef<'_, T>, d: ColRef<'_, T>) {
+        path.info.residual = crate::residual::residual_parts(self.m, q, d, 0, &path.end);
         crate::trace::guard_residual(path);
     }
+}
+
+/// Does the one-time work of a process that its first solve would
+/// otherwise pay, and returns whether the small solve it makes reached its end.
+///
+/// The first call in a process costs several times the next one at small
+/// sizes (measured at n = 20: 100..230 us against 27..55 us): the CPU
+/// feature detection of the SIMD kernels (`cpuid`, some 60 us under
+/// virtualisation, where each `cpuid` traps) and the first touch of the
+/// code of the engine and of faer's kernels (page faults). `warm_up` runs a
+/// PLCP of order 3 with three pivots (the default settings in `f64`, the
+/// block basis) and one step of a [`Solver`] on it. No threads are started.
+/// A latency-sensitive caller (one small solve per process, or the first
+/// step of a control loop) calls it at start-up; `plcp solve` and `plcp
+/// sequence` call it before they read their input. It costs what the small
+/// solve costs (tens of microseconds) each time it is called.
+pub fn warm_up() -> bool {
+    let _ = pulp::Arch::new();
+    let _ = crate::scalar::fma_detected();
+    let m = faer::Mat::<f64>::from_fn(3, 3, |i, j| if i == j { 2.0 } else { 0.5 });
+    let q = faer::Col::<f64>::from_fn(3, |i| 1.0 + i as f64);
+    let d = faer::Col::<f64>::from_fn(3, |_| -1.0);
+    let settings = Settings::<f64>::default();
+    let reached = crate::problem::Plcp::new(m.as_ref(), q.as_ref(), d.as_ref())
+        .and_then(|p| p.with_range(0.0, Some(3.0)))
+        .and_then(|p| crate::solve(&p, &settings))
+        .is_ok_and(|path| path.status == Status::Reached);
+    let stepped = Solver::new(m.as_ref(), &settings).is_ok_and(|mut s| {
+        s.lcp_end(q.as_ref()).is_ok() && s.step_end(q.as_ref(), d.as_ref()).is_ok()
+    });
+    reached && stepped
 }
 
 /// The value of variable `v` at point `pt` (`L` for the parameter).

@@ -126,3 +126,56 @@ fn bad_data_are_errors() {
     assert!(solver.lcp(bad.as_ref()).is_err());
     assert!(Solver::new(Mat::<f64>::zeros(2, 3).as_ref(), &settings).is_err());
 }
+
+/// The lean steps (`Solver::step_end`, no `Path`) trace the same pivots as
+/// the full steps (`Solver::step`) of a second solver on the same data: the
+/// same end z to the last bit, pivots, statuses and residuals; and each end
+/// z equals an independent cold solve of the same PLCP.
+#[test]
+fn lean_steps_equal_full_steps_and_cold_solves() {
+    for (n, k, seed) in [(8usize, 40usize, 3u64), (30, 60, 4), (60, 40, 5)] {
+        let (m, g) = instance(n, k, 0.1, seed);
+        let settings = Settings::<f64>::default();
+        let mut full = Solver::new(m.as_ref(), &settings).unwrap();
+        let mut lean = Solver::new(m.as_ref(), &settings).unwrap();
+        let a = full.lcp(g[0].as_ref()).unwrap();
+        let b = lean.lcp_end(g[0].as_ref()).unwrap();
+        assert_eq!(a.status, b.status);
+        assert_eq!(max_diff(&a.end.z, &b.end.z), 0.0, "n = {n}, step 0");
+        for s in 1..=k {
+            let d = &g[s] - &g[s - 1];
+            let a = full.step(g[s - 1].as_ref(), d.as_ref()).unwrap();
+            let b = lean.step_end(g[s - 1].as_ref(), d.as_ref()).unwrap();
+            assert_eq!(a.status, b.status, "n = {n}, step {s}");
+            assert_eq!(
+                b.status,
+                Status::Reached,
+                "n = {n}, step {s}: {}",
+                b.message
+            );
+            assert_eq!(a.info.pivots, b.pivots, "n = {n}, step {s}");
+            assert_eq!(a.info.warm_start, b.warm, "n = {n}, step {s}");
+            assert_eq!(a.info.residual, b.residual, "n = {n}, step {s}");
+            assert_eq!(max_diff(&a.end.z, &b.end.z), 0.0, "n = {n}, step {s}");
+            assert_eq!(max_diff(&a.end.w, &b.end.w), 0.0, "n = {n}, step {s}");
+            let problem = Plcp::new(m.as_ref(), g[s - 1].as_ref(), d.as_ref())
+                .unwrap()
+                .with_range(0.0, Some(1.0))
+                .unwrap();
+            let cold = plcp::solve(&problem, &settings).unwrap();
+            assert!(
+                max_diff(&cold.end.z, &b.end.z) < 1e-10,
+                "n = {n}, step {s}: {:e}",
+                max_diff(&cold.end.z, &b.end.z)
+            );
+        }
+    }
+}
+
+/// `plcp::warm_up` solves its small problem and steps its solver (it
+/// reports whether both reached their ends: a warm-up that failed would
+/// leave the first real solve paying the one-time costs).
+#[test]
+fn warm_up_solves_its_problem() {
+    assert!(plcp::warm_up());
+}

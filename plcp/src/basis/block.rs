@@ -233,6 +233,8 @@ pub(crate) struct BlockInverse<T: Scalar> {
     row_block: Vec<Option<usize>>,
     /// Basis position -> slot.
     slots: Vec<Slot>,
+    /// `G y_M` of the last solve (a buffer kept between solves).
+    gy: RefCell<Col<T>>,
 }
 
 impl<T: Scalar> BlockInverse<T> {
@@ -276,6 +278,7 @@ impl<T: Scalar> BlockInverse<T> {
             rows: Vec::new(),
             row_block: vec![None; dim],
             slots: vec![Slot::Identity(0); dim],
+            gy: RefCell::new(Col::zeros(dim)),
         }
     }
 
@@ -296,14 +299,13 @@ impl<T: Scalar> BlockInverse<T> {
 
     /// Applies the pending update to `S^{-1}` and returns `S^{-1} ar` if `ar`
     /// is given (both in one pass over `S^{-1}` when an update is pending).
-    fn flush(&self, ar: Option<&[T]>) -> Option<Vec<T>> {
+    fn flush(&self, ar: Option<&[T]>) -> Option<Col<T>> {
         let k = self.k;
         let mut sinv = self.sinv.borrow_mut();
         let Some(pending) = self.pending.borrow_mut().take() else {
             let ar = ar?;
             let x = faer::ColRef::from_slice(ar);
-            let y = matvec(sinv.as_ref().submatrix(0, 0, k, k), x);
-            return Some(y.iter().copied().collect());
+            return Some(matvec(sinv.as_ref().submatrix(0, 0, k, k), x));
         };
         // two halves of the columns, each with its own accumulator, summed at
         // the end: on two threads when the block is large, with the same
@@ -341,7 +343,7 @@ impl<T: Scalar> BlockInverse<T> {
         for (a, b) in acc.iter_mut().zip(&hi) {
             *a += *b;
         }
-        Some(acc)
+        Some(Col::from_fn(k, |b| acc[b]))
     }
 
     /// `y_M = S^{-1} a_R`, with one step of iterative refinement on the block
@@ -354,8 +356,7 @@ impl<T: Scalar> BlockInverse<T> {
     fn block_solve(&self, a: &Col<T>) -> Col<T> {
         let k = self.k;
         let ar: Vec<T> = (0..k).map(|j| a[self.rows[j]]).collect();
-        let ym = self.flush(Some(&ar)).expect("a right-hand side was given");
-        let mut ym = Col::from_fn(k, |b| ym[b]);
+        let mut ym = self.flush(Some(&ar)).expect("a right-hand side was given");
         self.refined.set(false);
         if self.refine && k > 0 {
             let idle = self.idle.get();
@@ -395,14 +396,6 @@ impl<T: Scalar> BlockInverse<T> {
                 self.s[(aa, b)] = self.g[(self.rows[aa], b)];
             }
         }
-    }
-
-    /// `S^{-1} a_R` (block part) and `a - G S^{-1} a_R` (all system rows).
-    fn solve_parts(&self, a: &Col<T>) -> (Vec<T>, Col<T>) {
-        let k = self.k;
-        let ym = self.block_solve(a);
-        let full = a - matvec(self.g.as_ref().subcols(0, k), ym.as_ref());
-        (ym.iter().copied().collect(), full)
     }
 
     /// Row `i` of `G` on the block columns.
@@ -506,10 +499,19 @@ impl<T: Scalar> BasisFactor<T> for BlockInverse<T> {
     }
 
     fn solve(&self, a: &Col<T>) -> Col<T> {
-        let (ym, full) = self.solve_parts(a);
+        // solve_parts without its two intermediate columns: `G S^{-1} a_R`
+        // into a buffer the basis keeps, `a_i - (G y_M)_i` read per covered
+        // row (the same operations as `a - G y_M`)
+        let k = self.k;
+        let ym = self.block_solve(a);
+        let mut gy = self.gy.borrow_mut();
+        if gy.nrows() != self.dim {
+            *gy = Col::zeros(self.dim);
+        }
+        matvec_into(self.g.as_ref().subcols(0, k), ym.as_ref(), &mut gy);
         Col::from_fn(self.dim, |r| match self.slots[r] {
             Slot::Matrix(b) => ym[b],
-            Slot::Identity(i) => full[i],
+            Slot::Identity(i) => a[i] - gy[i],
         })
     }
 

@@ -37,7 +37,7 @@ pub(crate) use block::BlockInverse;
 pub(crate) use dense::DenseInverse;
 pub(crate) use sparse::SparseLu;
 
-use crate::linalg::{matmul_par, matvec, par_for};
+use crate::linalg::{matmul_par, matvec, matvec_into, par_for};
 use crate::matrix::MatrixRef;
 use crate::path::Var;
 use crate::scalar::Scalar;

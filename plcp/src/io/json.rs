@@ -42,7 +42,7 @@
 //! `null`**, so the output is always valid JSON: `lambda_to` of an unbounded
 //! last segment and `lambda_max` when infinite are `null` by design.
 
-use super::{check_order, convert, read_bytes, utf8_in};
+use super::{check_order, convert, convert_with, read_bytes, utf8_in};
 use crate::error::PlcpError;
 use crate::lemke::LcpSolution;
 use crate::path::{Path, Point, Residual, Status};
@@ -194,13 +194,13 @@ pub fn parse_plcp<T: Scalar>(bytes: &[u8], file: &str) -> Result<Plcp<T>, PlcpEr
     let mut m = Mat::<T>::zeros(dim, dim);
     for (i, row) in raw.m.iter().enumerate() {
         for (j, v) in row.iter().enumerate() {
-            m[(i, j)] = convert("M", &format!("({i}, {j})"), v.0)?;
+            m[(i, j)] = convert_with("M", || format!("({i}, {j})"), v.0)?;
         }
     }
     let col = |what: &str, v: &[Num]| -> Result<Col<T>, PlcpError> {
         let mut c = Col::<T>::zeros(v.len());
         for (i, x) in v.iter().enumerate() {
-            c[i] = convert(what, &format!("[{i}]"), x.0)?;
+            c[i] = convert_with(what, || format!("[{i}]"), x.0)?;
         }
         Ok(c)
     };
@@ -259,7 +259,7 @@ pub fn read_sequence(path: &std::path::Path) -> Result<(Mat<f64>, Vec<Col<f64>>)
     let mut m = Mat::<f64>::zeros(dim, dim);
     for (i, row) in raw.m.iter().enumerate() {
         for (j, v) in row.iter().enumerate() {
-            m[(i, j)] = convert("M", &format!("({i}, {j})"), v.0)?;
+            m[(i, j)] = convert_with("M", || format!("({i}, {j})"), v.0)?;
         }
     }
     let mut targets = Vec::with_capacity(raw.targets.len());
@@ -273,7 +273,7 @@ pub fn read_sequence(path: &std::path::Path) -> Result<(Mat<f64>, Vec<Col<f64>>)
         }
         let mut c = Col::<f64>::zeros(dim);
         for (i, x) in g.iter().enumerate() {
-            c[i] = convert("targets", &format!("[{k}][{i}]"), x.0)?;
+            c[i] = convert_with("targets", || format!("[{k}][{i}]"), x.0)?;
         }
         targets.push(c);
     }

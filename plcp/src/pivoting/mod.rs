@@ -25,7 +25,7 @@ mod ratio;
 mod refine;
 mod trace;
 
-pub(crate) use phases::{finish_path, run_path, start_phase};
+pub(crate) use phases::{finish_lean, finish_path, run_path, start_phase};
 
 use crate::basis::{apply, var_column, BasisFactor, BlockInverse, DenseInverse, SparseLu};
 use crate::matrix::MatrixRef;
@@ -57,6 +57,11 @@ pub(crate) struct Recorder<T: Scalar> {
     pub breakpoints: Vec<Breakpoint<T>>,
     pub turning_points: usize,
     last_sign: i8,
+    /// Whether segments are kept: a lean trace (the solver object's step,
+    /// [`crate::solver::Solver::step_end`]) records the breakpoints alone, so
+    /// that their residuals are measured and refined as in a full path (the
+    /// same numbers) without the six columns a segment allocates.
+    keep_segments: bool,
 }
 
 impl<T: Scalar> Recorder<T> {
@@ -66,7 +71,24 @@ impl<T: Scalar> Recorder<T> {
             breakpoints: Vec::new(),
             turning_points: 0,
             last_sign: 0,
+            keep_segments: true,
         }
+    }
+
+    /// A recorder of breakpoints alone (see `keep_segments`).
+    pub(crate) fn lean() -> Self {
+        Self {
+            keep_segments: false,
+            ..Self::new()
+        }
+    }
+
+    /// Empties the recorder for another trace (its buffers kept).
+    pub(crate) fn clear(&mut self) {
+        self.segments.clear();
+        self.breakpoints.clear();
+        self.turning_points = 0;
+        self.last_sign = 0;
     }
 }
 
@@ -318,14 +340,25 @@ impl<'a, T: Scalar> Engine<'a, T> {
     /// anew with `L` nonbasic at `lambda`, and the counters start again. For
     /// the solver object ([`crate::solver::Solver`]): returns why the basis
     /// is not a feasible start for the new data, `None` if it is one.
-    pub(crate) fn retarget(&mut self, q: Col<T>, d: Col<T>, lambda: T) -> Option<String> {
+    /// The data are copied into the engine's own columns (no allocation).
+    pub(crate) fn retarget(
+        &mut self,
+        q: faer::ColRef<'_, T>,
+        d: faer::ColRef<'_, T>,
+        lambda: T,
+    ) -> Option<String> {
         if self.row_of(Var::Lambda).is_some() {
             return Some("L is basic".into());
         }
-        self.data_max = Self::data_max(&q, &d);
-        self.d_rows = Self::nonzero_rows(&d);
-        self.q = q;
-        self.d = d;
+        self.q.as_mut().copy_from(q);
+        self.d.as_mut().copy_from(d);
+        self.data_max = Self::data_max(&self.q, &self.d);
+        self.d_rows.clear();
+        for i in 0..self.dim {
+            if self.d[i] != T::zero() {
+                self.d_rows.push(i);
+            }
+        }
         self.lambda = lambda;
         self.pivots = 0;
         self.degenerate_pivots = 0;
@@ -387,6 +420,28 @@ impl<'a, T: Scalar> Engine<'a, T> {
     /// `(max_i |q_i|, max_i |d_i|)`, cached for [`Self::xscale`].
     fn data_max(q: &Col<T>, d: &Col<T>) -> (T, T) {
         (col_max_abs(q), col_max_abs(d))
+    }
+
+    /// [`Self::point`] written into `pt` (its columns of the right lengths:
+    /// no allocation).
+    pub(crate) fn point_into(&self, driver: Option<(Var, T)>, pt: &mut Point<T>) {
+        pt.lambda = self.lambda;
+        pt.z.as_mut().fill(T::zero());
+        pt.w.as_mut().fill(T::zero());
+        pt.u.as_mut().fill(T::zero());
+        let Point { z, w, u, .. } = pt;
+        let mut set = |v: Var, val: T| match v {
+            Var::W(i) => w[i] = val,
+            Var::Z(i) => z[i] = val,
+            Var::U(j) => u[j] = val,
+            _ => {}
+        };
+        for (r, v) in self.basis.iter().enumerate() {
+            set(*v, self.x[r]);
+        }
+        if let Some((v, t)) = driver {
+            set(v, t);
+        }
     }
 
     /// Values of `(z, w, u)` now, with `driver` at `theta`.
@@ -458,6 +513,9 @@ impl<'a, T: Scalar> Engine<'a, T> {
         lambda_to: T,
         unbounded: bool,
     ) {
+        if !rec.keep_segments {
+            return;
+        }
         // a segment starts with the driver at zero
         let start = self.point(Some((driver, T::zero())));
         let (dz, dw, du) = self.slopes(driver, col, rate);

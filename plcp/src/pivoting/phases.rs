@@ -450,3 +450,71 @@ pub(crate) fn finish_path<T: Scalar>(
         final_basis,
     }
 }
+
+/// How a lean trace ended ([`finish_lean`]).
+pub(crate) struct LeanEnd<T: Scalar> {
+    pub status: crate::path::Status,
+    pub message: String,
+    /// The driver and its value where `lambda_max` was reached.
+    pub reached: Option<(Var, T)>,
+}
+
+/// [`finish_path`] without the path: traces from the engine's basis to
+/// `lambda_max` with a recorder of breakpoints alone (the breakpoints'
+/// residuals measured and refined as in a full path, so the numbers are the
+/// same) and writes the end point into `end` (no allocation for it). The
+/// statuses and messages are those of [`finish_path`].
+pub(crate) fn finish_lean<T: Scalar>(
+    eng: &mut Engine<'_, T>,
+    rec: &mut Recorder<T>,
+    lambda_max: Option<T>,
+    end: &mut Point<T>,
+) -> LeanEnd<T> {
+    use crate::path::Status;
+    rec.clear();
+    let traced = eng.trace(lambda_max, Some(rec));
+    let (status, message, reached) = match traced {
+        TraceEnd::Reached { driver, theta } => {
+            eng.point_into(Some((driver, theta)), end);
+            (Status::Reached, String::new(), Some((driver, theta)))
+        }
+        TraceEnd::UnboundedRay { .. } => {
+            eng.point_into(None, end);
+            let m = format!(
+                "the last segment, from L = {:e}, holds for every larger L",
+                eng.lambda.to_f64()
+            );
+            (Status::UnboundedRay, m, None)
+        }
+        TraceEnd::SecondaryRay { .. } => {
+            eng.point_into(None, end);
+            let m = format!(
+                "secondary ray at L* = {:e}: the path has no continuation beyond it",
+                eng.lambda.to_f64()
+            );
+            (Status::SecondaryRay, m, None)
+        }
+        TraceEnd::Stalled(m) => {
+            eng.point_into(None, end);
+            (Status::SecondaryRay, m, None)
+        }
+        TraceEnd::PivotLimit => {
+            eng.point_into(None, end);
+            let m = format!(
+                "pivot limit ({}) reached at L = {:e}",
+                eng.max_pivots,
+                eng.lambda.to_f64()
+            );
+            (Status::PivotLimit, m, None)
+        }
+        TraceEnd::IllConditioned(m) => {
+            eng.point_into(None, end);
+            (Status::IllConditioned, m, None)
+        }
+    };
+    LeanEnd {
+        status,
+        message,
+        reached,
+    }
+}
