@@ -4,18 +4,14 @@ use crate::matrix::MatrixRef;
 use crate::path::{Path, Point, Residual};
 use crate::problem::Plcp;
 use crate::scalar::Scalar;
-use crate::tolerance::residual_unit;
 use faer::{ColRef, MatRef};
 
 /// The residuals of `point` for `problem`, each relative to the data's scale:
 ///
-/// * equation: `max_r |(M x + q + L d)_r - (0 or w_r)| / max(s_r, U)`, with
-///   `s_r = max(|q_r|, |L d_r|, |w_r|, max_j |M_rj x_j|)` and `U` the data's
-///   unit ([`residual_unit`]: `min(max |q|, max |d|)`): relative, so a uniform scaling of
-///   the data (and of `w` with it) leaves it unchanged;
-/// * feasibility: `max(0, -min_i z_i / sz, -min_i w_i / sw)`, `sz = max(U /
-///   max |M_ij|, max |z|)` (`M_ij` over the columns of nonzero `z`),
-///   `sw = max(U, max |w|)`;
+/// * equation: `max_r |(M x + q + L d)_r - (0 or w_r)| / s_r`, with
+///   `s_r = max(1, |q_r|, |L d_r|, max_j |M_rj x_j|)`;
+/// * feasibility: `max(0, -min_i z_i / sz, -min_i w_i / sw)`, `sz = max(1, max |z|)`,
+///   `sw = max(1, max |w|)`;
 /// * complementarity: `max_i |z_i w_i| / (sz sw)`.
 pub fn residual<T: Scalar>(problem: &Plcp<T>, point: &Point<T>) -> Residual {
     residual_matrix(
@@ -52,11 +48,9 @@ pub fn residual_matrix<T: Scalar>(
     // written over slices so that it vectorises), in the working precision
     let mut acc: Vec<T> = (0..dim).map(|r| q[r] + point.lambda * d[r]).collect();
     let mut big: Vec<T> = (0..dim)
-        .map(|r| q[r].abs().max((point.lambda * d[r]).abs()))
+        .map(|r| T::one().max(q[r].abs()).max((point.lambda * d[r]).abs()))
         .collect();
     let mut colbuf: Vec<T> = Vec::new();
-    // the largest |M_ij| over the columns of nonzero z (z's unit is U / that)
-    let mut mz = T::zero();
     for j in 0..dim {
         let xj = if j < p { point.u[j] } else { point.z[j - p] };
         if xj == T::zero() {
@@ -70,9 +64,6 @@ pub fn residual_matrix<T: Scalar>(
                 for (&i, &mij) in rows.iter().zip(vals) {
                     acc[i] += mij * xj;
                     big[i] = big[i].max(mij.abs() * xa);
-                    if j >= p {
-                        mz = mz.max(mij.abs());
-                    }
                 }
                 continue;
             }
@@ -89,32 +80,19 @@ pub fn residual_matrix<T: Scalar>(
             *a += mij * xj;
             *s = (*s).max(mij.abs() * xa);
         }
-        if j >= p {
-            mz = col.iter().fold(mz, |a, v| a.max(v.abs()));
-        }
     }
     let mut scale: Vec<f64> = big.iter().map(|s| s.to_f64()).collect();
-    for r in p..dim {
-        scale[r] = scale[r].max(point.w[r - p].to_f64().abs());
-    }
-    // each row against its own data, never below the data's unit (see
-    // `tolerance::residual_unit`): relative, so a uniform scaling of the
-    // problem leaves it unchanged
-    let floor = residual_unit(q, d);
     let mut eq = 0.0f64;
     for r in 0..dim {
         let mut v = acc[r];
         if r >= p {
             v -= point.w[r - p];
+            scale[r] = scale[r].max(point.w[r - p].to_f64().abs());
         }
-        eq = eq.max(v.to_f64().abs() / scale[r].max(floor));
+        eq = eq.max(v.to_f64().abs() / scale[r]);
     }
-    // w scales with q; z is `U / max |M_ij|` in size (an LCP with `q` of 1e-4
-    // has `z` of 1e-4: against an absolute 1 its violations went unseen)
-    let mz = mz.to_f64();
-    let zunit = if mz > 0.0 { floor / mz } else { 1.0 };
-    let sz = (0..n).fold(zunit, |a, i| a.max(point.z[i].to_f64().abs()));
-    let sw = (0..n).fold(floor, |a, i| a.max(point.w[i].to_f64().abs()));
+    let sz = (0..n).fold(1.0f64, |a, i| a.max(point.z[i].to_f64().abs()));
+    let sw = (0..n).fold(1.0f64, |a, i| a.max(point.w[i].to_f64().abs()));
     let mut feas = 0.0f64;
     let mut comp = 0.0f64;
     for i in 0..n {

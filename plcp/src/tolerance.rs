@@ -18,7 +18,7 @@
 //! | refinement | entering columns refined (one step, residual in `Scalar::Wide`); basic values at breakpoints refined | columns: `cond * eps > refine_cond_eps` (default `1e-12`); values: in the working precision while the equation residual `> refine_tol_eps * eps` (default `1e3`, two steps), with wide residuals once `cond * eps >` [`WIDE_REFINE_COND_EPS`] (`1e-9`; on a sparse `M` from `refine_cond_eps`) |
 //! | idle refinement | the block basis pauses refining entering columns (then probes, pauses doubling to 64 solves) | [`REFINE_IDLE_RUN`] (`8`) corrections in a row `<= REFINE_IDLE_EPS * eps * max abs(y)` ([`REFINE_IDLE_EPS`] `= 64`) |
 //! | segment evaluation | [`crate::Segment::eval`] returns a negative `z` or `w` inside its segment as zero | `-v <= abs(slope) 64 eps max(1, abs(L)) + 64 eps abs(v_from)` and `-v > sqrt(eps) max(1, max abs(x))` |
-//! | residuals of points | reported ([`crate::residual::residual`]: start, end, `Path::at`, and every breakpoint for Lemke on a Schur reduction or on request, [`crate::residual::measure_path`]) | equation row `r` relative to `max(s_r, U)`, `s_r = max(abs(q_r), abs(L d_r), abs(w_r), max_j abs(M_rj x_j))` and `U = min(max abs(q), max abs(d))` the data's unit ([`residual_unit`]; no absolute floor: a uniform scaling of the data leaves it unchanged); feasibility of `w` relative to `max(U, max abs(w))`, of `z` to `max(U / max abs(M_ij), max abs(z))` (over the columns of nonzero `z`) |
+//! | residuals of points | reported ([`crate::residual::residual`]: start, end, `Path::at`, and every breakpoint for Lemke on a Schur reduction or on request, [`crate::residual::measure_path`]) | equation row `r` relative to `max(1, abs(q_r), abs(L d_r), abs(w_r), max_j abs(M_rj x_j))` |
 //! | residual guard | a path that claims success is downgraded to `ill_conditioned`; the trace stops as `ill_conditioned` at a breakpoint whose residual (after refinement) fails it | largest reported residual `> sqrt(eps)` |
 //! | reduction ties | Lemke on the Schur reduction of a mixed problem: the tie tolerance of the reduced path | `tie_tol_eps` times [`reduction_tie_factor`] (`cond(F)`, at least 1, and the product at most `sqrt(eps)`) |
 //! | covering vector | the start phase's covering vector `c` is brought by a power of two to the scale of the right-hand side, so the artificial variable is dimensionless | `c * 2^(e(max abs(q + L0 d)) - e(max c))`, `e` the binary exponent |
@@ -30,36 +30,6 @@
 //! | breakpoint re-intersection | Lemke on the Schur reduction: a breakpoint moves to where the polished segment's leaving variable is zero | only by `<= sqrt(eps) * max(1, abs(L))` |
 
 use crate::scalar::Scalar;
-
-/// The data's unit in the residuals of a point ([`crate::residual::residual`]):
-/// `U = min(max |q|, max |d|)` over those that are nonzero. Row `r` of the
-/// equation residual is measured against `max(s_r, U)`, `s_r = max(|q_r|,
-/// |L d_r|, |w_r|, max_j |M_rj x_j|)` its own data, the slacks `w` against
-/// `max(U, max |w|)` and `z` against `max(U / max |M_ij|, max |z|)`.
-///
-/// It replaces an absolute floor of `1`, with which data scaled by `1e-30`
-/// looked accurate whatever the answer (issue 14): a uniform scaling of
-/// `(M, q, d)` scales `U` with it. On data whose `q` or `d` is of unit size
-/// (the frames: unit loads, plastic capacities; most test problems) it is
-/// that floor, so no correct path raises a new alarm and no alarm is lost.
-/// Measured alternatives: each row against its own data only (no floor)
-/// raised false alarms on correct paths (`tests/stiff.rs`,
-/// `tests/sparse_frames.rs`: rows whose data are zero carry the rounding of
-/// the others, `7.7e-14` on the 20-element cantilever at `L = 0`); the whole
-/// problem's scale `S = max_r s_r` (or `1e4 sqrt(eps) S`, normwise) and
-/// `max |q|` alone hid in f32 a wrong path the floor of `1` had caught
-/// (`scenes/stiff/lengths-portal.toml`: capacities up to `1e3`, unit load,
-/// residual `4e-3` at `L = 1e5`; breakpoints off by 50%).
-pub fn residual_unit<T: Scalar>(q: faer::ColRef<'_, T>, d: faer::ColRef<'_, T>) -> f64 {
-    let max = |c: faer::ColRef<'_, T>| c.iter().fold(0.0f64, |a, v| a.max(v.to_f64().abs()));
-    let (mq, md) = (max(q), max(d));
-    let u = match (mq > 0.0, md > 0.0) {
-        (true, true) => mq.min(md),
-        (true, false) => mq,
-        _ => md,
-    };
-    u.max(f64::MIN_POSITIVE)
-}
 
 /// With [`crate::Settings::escalate`], a path in `f32`/`f64` that claims an
 /// end (`reached`, a ray) on a basis with `cond * eps` above this is checked
