@@ -14,7 +14,8 @@
 //!
 //! States are read on each piece at an interior point, with a relative
 //! tolerance suited to the working precision (for `x*_dd`, relative to the
-//! largest `x*_dd` on the piece and its neighbours).
+//! largest `x*_dd` on the piece; a piece's length relative to its own
+//! `Lambda`), so a path whose breakpoints span decades shows every one.
 //!
 //! **Yield polygons.** A section with an interaction (bending-torsion,
 //! bending-axial) has one yield mode per facet of its polygon. It is at yield
@@ -353,30 +354,58 @@ fn restore_yield(
 pub fn read(frame: &Frame, system: &System, pieces: &[Piece], tolerance: f64) -> Reading {
     let (groups, group_of) = groups(frame, system);
     let ns = system.sections.len();
-    // The scale of x*_dd that tells "accelerating" from round-off, per piece:
-    // the largest |x*_dd| on the piece and its neighbours (x*_dd grows with
-    // Lambda, so one scale for a path whose breakpoints span decades would
-    // hide the first hinges), never below 1e-9 of the largest on the path.
-    let zmax: Vec<f64> = pieces
-        .iter()
-        .map(|p| {
-            p.z(p.representative())
-                .iter()
-                .fold(0.0f64, |a, v| a.max(v.abs()))
-        })
-        .collect();
-    let global = zmax.iter().fold(f64::MIN_POSITIVE, |a, &v| a.max(v));
-    let zscale_of = |i: usize| -> f64 {
-        let lo = i.saturating_sub(1);
-        let hi = (i + 1).min(zmax.len() - 1);
-        zmax[lo..=hi].iter().fold(1e-9 * global, |a, &v| a.max(v))
+    // The scale of x*_dd that tells "accelerating" from round-off, per piece,
+    // relative to the piece's own scale. A piece on which the inertia forces
+    // are round-off of its equations of motion (`max_j m_j |q_dd_j| <= tol^2
+    // max_j (|L a_j| + sum_r |A_rj X_r|)`) is rigid: its x*_dd are round-off
+    // too (an indeterminate frame's rigid phase pivots with basic x*_dd of
+    // 1e-16). On a moving piece the scale is the largest |x*_dd| on the piece
+    // itself (at its ends, where an affine function peaks, and inside). A
+    // scale taken from the whole path (or a neighbour, read far away inside a
+    // long piece) hid real flow on a path whose breakpoints span decades
+    // (issue 14: x*_dd of 5e-14 at L = 1e-3 against 1e7 at L = 1e16).
+    let nb = system.coordinates.len();
+    let moving = |p: &Piece| -> bool {
+        // at the piece's far end, where the inertia forces (zero at a
+        // breakpoint where a mechanism forms) are largest
+        let l = if p.lambda_to.is_finite() {
+            p.lambda_to
+        } else {
+            p.representative()
+        };
+        let u = p.u(l);
+        let (mut inertia, mut forces) = (0.0f64, 0.0f64);
+        for j in 0..nb {
+            inertia = inertia.max((system.mass[j] * u[j]).abs());
+            let f = (0..system.a.nrows())
+                .map(|r| (system.a[(r, j)] * u[nb + r]).abs())
+                .sum::<f64>();
+            forces = forces.max((system.load[j] * l).abs() + f);
+        }
+        // round-off of the equations of motion: `tolerance^2`, 100 eps
+        inertia > tolerance * tolerance * forces
     };
-    // Pieces shorter than the tolerance (f32 round-off, degenerate steps) are
-    // skipped: their neighbours meet at one breakpoint.
+    let zscale_of = |i: usize| -> f64 {
+        let p = &pieces[i];
+        if !moving(p) {
+            return f64::INFINITY;
+        }
+        let mut at = vec![p.lambda_from, p.representative()];
+        if p.lambda_to.is_finite() {
+            at.push(p.lambda_to);
+        }
+        at.iter()
+            .flat_map(|&x| p.z(x))
+            .fold(f64::MIN_POSITIVE, |a, v| a.max(v.abs()))
+    };
+    // Pieces shorter than the tolerance relative to their own `Lambda` (f32
+    // round-off, degenerate steps) are skipped: their neighbours meet at one
+    // breakpoint. (Not relative to `max(1, |L|)`: that absorbed the piece
+    // `[0, 9.08e-9]` of a frame whose first hinge forms at 9.08e-9.)
     let mut view: Vec<(usize, f64, f64)> = Vec::new();
     for (i, p) in pieces.iter().enumerate() {
         let long = !p.lambda_to.is_finite()
-            || p.lambda_to - p.lambda_from > tolerance * p.lambda_from.abs().max(1.0);
+            || p.lambda_to - p.lambda_from > tolerance * p.lambda_from.abs().max(p.lambda_to.abs());
         if long {
             // the first interval starts where the path does, even when its
             // first pieces are too short to read

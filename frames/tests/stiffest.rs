@@ -96,3 +96,43 @@ fn stiffest_cantilever_full_answer() {
         assert!(rel(*g, e) < 1e-10, "breakpoints {got:?}, exact {EXACT:?}");
     }
 }
+
+/// The breakpoints of `a`'s PLCP, traced in exact rational arithmetic.
+fn exact_breakpoints(a: &Analysis) -> Vec<f64> {
+    let problem = a.system.plcp::<f64>(None).unwrap();
+    let settings = plcp::Settings::<f64>::default();
+    let exact = plcp::exact::trace(&problem, &settings).unwrap();
+    assert!(exact.path.status.is_success(), "{}", exact.path.message);
+    exact
+        .breakpoints
+        .iter()
+        .map(plcp::exact::rational_to_f64)
+        .collect()
+}
+
+/// Issue 14, defect 5: the hinge reading showed three of the six breakpoints
+/// (it absorbed the piece `[0, 9.08e-9]` as shorter than its tolerance times
+/// `max(1, L)`, and read `x*_dd` of 5e-14 and 1e-10 as round-off against a
+/// floor of 1e-9 of the largest `x*_dd` on the path, 1e7 at `L = 1e16`): the
+/// hinges at 9.08e-9 and 1.099e-3 and the unloading at 0.1014 were never
+/// reported. The report shows every breakpoint of the path, each the exact
+/// one (traced here in rational arithmetic) to 1e-10.
+#[test]
+fn stiffest_cantilever_report_shows_every_breakpoint() {
+    let a = run();
+    let exact = exact_breakpoints(&a);
+    assert_eq!(exact.len(), 6, "exact breakpoints {exact:?}");
+    let shown: Vec<f64> = a.reading.breakpoints.iter().map(|b| b.lambda).collect();
+    assert_eq!(shown.len(), 6, "shown {shown:?}, exact {exact:?}");
+    for (g, e) in shown.iter().zip(&exact) {
+        assert!(rel(*g, *e) < 1e-10, "shown {shown:?}, exact {exact:?}");
+    }
+    // the static collapse load is the first: Mp / (moment per unit load) at A
+    let collapse = a.reading.collapse_load().unwrap();
+    assert!(rel(collapse, exact[0]) < 1e-10, "collapse load {collapse}");
+    // the third is an unloading
+    let unloads = a.reading.breakpoints[2]
+        .of(frames::hinge::EventKind::Unloaded)
+        .count();
+    assert_eq!(unloads, 1, "{:?}", a.reading.breakpoints[2]);
+}

@@ -381,7 +381,27 @@ pub fn solve_lcp<T: Scalar>(
             w[i] += lcp.m[(i, j)] * point.z[j];
         }
     }
-    info.residual = residual(&problem, &point);
+    // measured with the solver's w and with w recomputed from z; a success
+    // beyond the residual guard is `ill_conditioned` (issue 14: Siconos
+    // enum_fails in f32, Siconos error 1.04, had been reported `reached`)
+    let honest = Point {
+        w: w.clone(),
+        ..point.clone()
+    };
+    info.residual = residual(&problem, &point).max(residual(&problem, &honest));
+    let (mut status, mut message) = (status, message);
+    let worst = info.residual.worst();
+    let limit = T::eps().to_f64().sqrt();
+    if status.is_success() && (worst.is_nan() || worst > limit) {
+        message = format!(
+            "the solution's residual {worst:.3e} (equation {:.1e}, feasibility {:.1e}, complementarity {:.1e}) exceeds sqrt(eps) = {limit:.1e} in {}: the answer cannot be trusted; try a higher precision. {message}",
+            info.residual.equation,
+            info.residual.feasibility,
+            info.residual.complementarity,
+            T::NAME,
+        );
+        status = Status::IllConditioned;
+    }
     info.solve_seconds = timer.elapsed().as_secs_f64();
     Ok(LcpSolution {
         status,

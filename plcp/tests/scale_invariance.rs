@@ -331,3 +331,105 @@ fn f32_underflow_is_an_error_naming_the_entry() {
     .unwrap_err();
     assert!(e.to_string().contains("q entry [1]"), "{e}");
 }
+
+/// `point` of the unscaled problem as a point of the problem scaled by `s`:
+/// the same `L` and `z`, `w` times `s`.
+fn scaled_point(point: &plcp::Point<f64>, s: f64) -> plcp::Point<f64> {
+    plcp::Point {
+        lambda: point.lambda,
+        z: point.z.clone(),
+        w: Col::from_fn(point.w.nrows(), |i| point.w[i] * s),
+        u: point.u.clone(),
+    }
+}
+
+/// The residual floor (issue 14): the equation residual was relative to
+/// `max(1, |q_r|, |L d_r|, max_j |M_rj x_j|)`, whose absolute `1` made data
+/// scaled by 1e-30 look accurate whatever the answer. A uniform scaling of
+/// the problem (and of `w` with it) leaves the relative residual unchanged,
+/// and an answer wrong by 10% is flagged (above the residual guard,
+/// `sqrt(eps)`) at every scale.
+#[test]
+#[ignore = "residual floor fix reverted: U = min(max |q|, max |d|) made frames time stepping (tiny d) restart cold, tests/timestep.rs tiny_steps; see docs/limits.md"]
+fn residual_is_relative_to_the_data_at_every_scale() {
+    let data = pmatrix20();
+    let base = solve(&scaled::<f64>(&data, 1.0));
+    assert!(base.status.is_success(), "{}", base.message);
+    let seg = &base.segments[base.segments.len() / 2];
+    let right = seg.eval(seg.lambda_from + (seg.lambda_to - seg.lambda_from) * 0.5);
+    let mut wrong = right.clone();
+    let k = (0..wrong.z.nrows())
+        .max_by(|&a, &b| wrong.z[a].total_cmp(&wrong.z[b]))
+        .unwrap();
+    assert!(wrong.z[k] > 0.0);
+    wrong.z[k] *= 1.1;
+    let guard = f64::EPSILON.sqrt();
+    let r1 = plcp::residual::residual(&scaled::<f64>(&data, 1.0), &right).equation;
+    let w1 = plcp::residual::residual(&scaled::<f64>(&data, 1.0), &wrong).equation;
+    assert!(r1 < 1e-14, "right answer: residual {r1:e}");
+    assert!(w1 > guard, "wrong answer: residual {w1:e}");
+    for s in [2f64.powi(-100), 1e-30, 1e-150, 2f64.powi(100), 1e30] {
+        let p = scaled::<f64>(&data, s);
+        let r = plcp::residual::residual(&p, &scaled_point(&right, s)).equation;
+        let w = plcp::residual::residual(&p, &scaled_point(&wrong, s)).equation;
+        if s.log2().fract() == 0.0 {
+            assert_eq!(r, r1, "scale {s:e}: right answer");
+            assert_eq!(w, w1, "scale {s:e}: wrong answer");
+        } else {
+            assert!(
+                (r - r1).abs() <= 8.0 * f64::EPSILON,
+                "scale {s:e}: {r:e} vs {r1:e}"
+            );
+            assert!((w - w1).abs() <= 1e-6 * w1, "scale {s:e}: {w:e} vs {w1:e}");
+        }
+        assert!(w > guard, "scale {s:e}: a wrong answer with residual {w:e}");
+    }
+}
+
+/// Issue 14, defect 7: Siconos `enum_fails` (`q` of 2e-4 and less) in f32
+/// was reported `reached` with a Siconos error of 1.04: the feasibility and
+/// complementarity of the answer were measured against an absolute `1`
+/// (`w` of 2e-4 negative read as 2e-4, below f32's `sqrt(eps)`). Now `w` is
+/// measured against the data's unit `max |q|` and `z` against
+/// `max |q| / max |M_ij|`: an answer with Siconos error 1 is flagged in
+/// every precision, a right one is not.
+#[test]
+#[ignore = "residual floor fix reverted: U = min(max |q|, max |d|) made frames time stepping (tiny d) restart cold, tests/timestep.rs tiny_steps; see docs/limits.md"]
+fn residual_flags_a_wrong_lcp_answer_with_small_q() {
+    fn check<T: Scalar>() {
+        let m = Mat::<T>::from_fn(2, 2, |i, j| {
+            T::from_f64(if i == j { [5.0, 3.0][i] } else { 0.0 })
+        });
+        let q = Col::<T>::from_fn(2, |i| T::from_f64([-2.05e-4, -7.85e-7][i]));
+        let p = Plcp::new(m.as_ref(), q.as_ref(), Col::<T>::zeros(2).as_ref()).unwrap();
+        let point = |z: [f64; 2]| {
+            let z = Col::<T>::from_fn(2, |i| T::from_f64(z[i]));
+            let w = Col::<T>::from_fn(2, |i| q[i] + m[(i, i)] * z[i]);
+            plcp::Point {
+                lambda: T::zero(),
+                z,
+                w,
+                u: Col::zeros(0),
+            }
+        };
+        let guard = T::eps().to_f64().sqrt();
+        let right = point([2.05e-4 / 5.0, 7.85e-7 / 3.0]);
+        let r = plcp::residual::residual(&p, &right).worst();
+        assert!(r < guard, "{}: right answer flagged, {r:e}", T::NAME);
+        // z = 0: w = q < 0 (Siconos error 1)
+        let infeasible = point([0.0, 0.0]);
+        let r = plcp::residual::residual(&p, &infeasible).worst();
+        assert!(r > 0.5, "{}: infeasible answer, residual {r:e}", T::NAME);
+        // z twice the solution: z_0 w_0 = 8.2e-5 * 2.05e-4 (Siconos error 1)
+        let not_complementary = point([2.0 * 2.05e-4 / 5.0, 7.85e-7 / 3.0]);
+        let r = plcp::residual::residual(&p, &not_complementary).worst();
+        assert!(
+            r > 0.5,
+            "{}: non-complementary answer, residual {r:e}",
+            T::NAME
+        );
+    }
+    check::<f32>();
+    check::<f64>();
+    check::<fx128>();
+}
