@@ -4,6 +4,9 @@
 //! in the plane `z = 0`), and the same to rounding after a rigid rotation of
 //! the whole scene in space.
 
+mod common {
+    pub mod reference;
+}
 use frames::{Analysis, AnalysisOptions, Scene};
 use toml::Value;
 
@@ -696,11 +699,6 @@ fn rigid_rotation_of_the_3d_run_changes_nothing_but_rounding() {
 /// `Polyhedron::load_factor`. Rising with `k` to the smooth surface's.
 #[test]
 fn first_breakpoint_is_the_static_collapse_load_of_the_polyhedron() {
-    use clarabel::algebra::CscMatrix;
-    use clarabel::solver::{
-        DefaultSettingsBuilder, DefaultSolver, IPSolver, NonnegativeConeT, SolverStatus,
-        SupportedConeT, ZeroConeT,
-    };
     use frames::yield_surface::Polyhedron;
     let src = pipe_whip("space-run.toml");
     let tp = std::f64::consts::PI / (2.0 * 3f64.sqrt());
@@ -713,53 +711,7 @@ fn first_breakpoint_is_the_static_collapse_load_of_the_polyhedron() {
         assert_eq!(s.model, frames::model::Model::Space);
         let first = a.reading.breakpoints[0].lambda;
         // LP: max lambda  s.t.  A^T X - lambda a_o = 0,  (T N)^T X <= X*
-        let (nb, ns, np) = (s.coordinates.len(), s.forces.len(), s.modes.len());
-        let (mut ii, mut jj, mut vv) = (Vec::new(), Vec::new(), Vec::new());
-        for j in 0..nb {
-            for r in 0..ns {
-                if s.a[(r, j)] != 0.0 {
-                    ii.push(j);
-                    jj.push(r);
-                    vv.push(s.a[(r, j)]);
-                }
-            }
-            if s.load[j] != 0.0 {
-                ii.push(j);
-                jj.push(ns);
-                vv.push(-s.load[j]);
-            }
-        }
-        for m in 0..np {
-            for r in 0..ns {
-                if s.tn[(r, m)] != 0.0 {
-                    ii.push(nb + m);
-                    jj.push(r);
-                    vv.push(s.tn[(r, m)]);
-                }
-            }
-        }
-        let a_lp = CscMatrix::new_from_triplets(nb + np, ns + 1, ii, jj, vv);
-        let mut b = vec![0.0; nb];
-        b.extend(&s.capacities);
-        let mut c = vec![0.0; ns + 1];
-        c[ns] = -1.0;
-        let cones: Vec<SupportedConeT<f64>> = vec![ZeroConeT(nb), NonnegativeConeT(np)];
-        let settings = DefaultSettingsBuilder::default()
-            .verbose(false)
-            .tol_gap_abs(1e-12)
-            .tol_gap_rel(1e-12)
-            .tol_feas(1e-12)
-            .build()
-            .unwrap();
-        let p = CscMatrix::<f64>::zeros((ns + 1, ns + 1));
-        let mut solver = DefaultSolver::new(&p, &c, &a_lp, &b, &cones, settings).unwrap();
-        solver.solve();
-        assert!(
-            matches!(solver.solution.status, SolverStatus::Solved),
-            "{:?}",
-            solver.solution.status
-        );
-        let lp = solver.solution.x[ns];
+        let lp = common::reference::lp_collapse_load(s);
         // statics by hand: section forces per unit thrust, in element axes
         let fr = &a.scene.frame;
         let tip = fr.node_index("G").unwrap();
@@ -792,7 +744,7 @@ fn first_breakpoint_is_the_static_collapse_load_of_the_polyhedron() {
         eprintln!(
             "k = {k:>2}: {:>4} facets, {} modes, {} pivots: first breakpoint {first:.9}, LP {lp:.9}, by hand {by_hand:.9}, smooth {smooth:.9}",
             poly.facets().len(),
-            np,
+            s.modes.len(),
             a.solution.info.pivots
         );
         assert!(
