@@ -136,3 +136,36 @@ fn stiffest_cantilever_report_shows_every_breakpoint() {
         .count();
     assert_eq!(unloads, 1, "{:?}", a.reading.breakpoints[2]);
 }
+
+/// The extremes chain (`scenes/stiff/extremes-chain.toml`: masses 1e-8..1e8,
+/// Mp 1e-6..1e6) with the defaults was reported `unbounded_ray` (success)
+/// with its first breakpoints wrong (9.03e-8 and 1.08e-7 where the exact path
+/// has 1e-8 and 9.99e-5): the f64 path's residual, 1e-8 against a floor of 1,
+/// passed. A small escalating f64 path is now certified and, rejected, traced
+/// exactly. Reference: the same scene with exact precision (its own
+/// certificate checks it), whose breakpoints every success must have.
+#[test]
+fn extremes_chain_success_only_with_the_exact_breakpoints() {
+    let file = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../scenes/stiff/extremes-chain.toml"
+    );
+    let scene = Scene::from_file(file).unwrap();
+    let exact = Analysis::run(
+        scene.clone(),
+        &AnalysisOptions {
+            exact: true,
+            ..AnalysisOptions::default()
+        },
+    )
+    .unwrap();
+    let cert = exact.solution.info.certificate.as_ref().unwrap();
+    assert!(cert.failure.is_none(), "{:?}", cert.failure);
+    let a = Analysis::run(scene, &AnalysisOptions::default()).unwrap();
+    assert!(a.solution.status.is_success(), "{}", a.solution.message);
+    let (got, want) = (breakpoints(&a), breakpoints(&exact));
+    assert_eq!(got.len(), want.len(), "{got:?} against {want:?}");
+    for (g, w) in got.iter().zip(&want) {
+        assert!(rel(*g, *w) <= 1e-10, "{got:?} against {want:?}");
+    }
+}
