@@ -6,7 +6,7 @@
 //! ```
 //!
 //! `solve` reads a PLCP in plcp's JSON format ([`plcp::io::json`]) and prints
-//! its solution path as one line of JSON ([`plcp::io::json::path_json`]);
+//! its solution path as one line of JSON ([`plcp::io::json::write_path_json`]);
 //! `--lambda-max` overrides the file's (`inf` for infinity). `lcp` reads a
 //! Siconos `.dat` file ([`plcp::io::siconos`]) and prints the solution of the
 //! LCP ([`plcp::io::json::lcp_json`]).
@@ -25,7 +25,7 @@
 //! and stdout is empty.
 
 use clap::{ColorChoice, Parser, Subcommand};
-use plcp::io::json::{lambda_max_from_f64, lcp_json, path_json, read_plcp};
+use plcp::io::json::{lambda_max_from_f64, lcp_json, parse_plcp, write_path_json};
 use plcp::io::siconos::read_lcp;
 use plcp::{Method, PlcpError, Precision, Scalar, Settings};
 use std::io::Write;
@@ -152,12 +152,14 @@ fn solve<T: Scalar>(
     certify: bool,
     exact: bool,
     threads: Option<usize>,
-) -> Result<String, InputError> {
+) -> Result<Report, InputError> {
     let bytes = plcp::io::read_bytes(file).map_err(in_file(file))?;
     if plcp::io::sparse_json::is_sparse_json(&bytes) && !exact && !certify {
         return solve_sparse::<T>(&bytes, file, method, lambda_max, at);
     }
-    let mut problem = read_plcp::<T>(file).map_err(in_file(file))?;
+    let mut problem =
+        parse_plcp::<T>(&bytes, &file.display().to_string()).map_err(in_file(file))?;
+    drop(bytes);
     if lambda_max.is_some() {
         let lm = lambda_max_from_f64::<T>(lambda_max)?;
         let lambda0 = problem.lambda0();
@@ -174,15 +176,12 @@ fn solve<T: Scalar>(
         let cert = certify.then(|| traced.path.certify(&problem));
         let seconds = start.elapsed().as_secs_f64();
         let bps: Vec<String> = traced.breakpoints.iter().map(plcp::exact::short).collect();
-        let json = path_json(&problem, &traced.path, at, seconds);
-        let mut extra = format!(
-            "\"exact_breakpoints\":{}",
-            serde_json::to_string(&bps).unwrap_or_default()
-        );
+        let mut extra = serde_json::Map::new();
+        extra.insert("exact_breakpoints".into(), bps.into());
         if let Some(c) = cert {
-            extra = format!("{extra},\"certificate\":{}", c.to_json());
+            extra.insert("certificate".into(), c.to_json());
         }
-        return Ok(append_fields(json, &extra));
+        return Ok(Report::path(problem, traced.path, at, seconds, extra));
     }
     let path = if certify {
         plcp::solve_certified(&problem, &settings)?
@@ -190,11 +189,43 @@ fn solve<T: Scalar>(
         plcp::solve(&problem, &settings)?
     };
     let seconds = start.elapsed().as_secs_f64();
-    let json = path_json(&problem, &path, at, seconds);
-    Ok(match &path.info.certificate {
-        Some(c) => append_fields(json, &format!("\"certificate\":{}", c.to_json())),
-        None => json,
-    })
+    let mut extra = serde_json::Map::new();
+    if let Some(c) = &path.info.certificate {
+        extra.insert("certificate".into(), c.to_json());
+    }
+    Ok(Report::path(problem, path, at, seconds, extra))
+}
+
+/// Writes a report to the output.
+type WriteReport = Box<dyn FnOnce(&mut dyn Write) -> std::io::Result<()>>;
+
+/// What a command prints: a JSON text, or a path report written straight to
+/// the output as it is serialised (at n = 2000 it is about 100 MB).
+enum Report {
+    Text(String),
+    Path(WriteReport),
+}
+
+impl Report {
+    fn path<T: Scalar>(
+        problem: plcp::Plcp<T>,
+        path: plcp::Path<T>,
+        at: &[f64],
+        seconds: f64,
+        extra: serde_json::Map<String, serde_json::Value>,
+    ) -> Self {
+        let at = at.to_vec();
+        Report::Path(Box::new(move |out: &mut dyn Write| {
+            write_path_json(out, &problem, &path, &at, seconds, &extra)
+        }))
+    }
+
+    fn write(self, out: &mut dyn Write) -> std::io::Result<()> {
+        match self {
+            Report::Text(json) => out.write_all(json.as_bytes()),
+            Report::Path(write) => write(out),
+        }
+    }
 }
 
 /// The sparse input (`plcp::io::sparse_json`): the sparse LU basis, the file's
@@ -206,7 +237,7 @@ fn solve_sparse<T: Scalar>(
     method: Method,
     lambda_max: Option<f64>,
     at: &[f64],
-) -> Result<String, InputError> {
+) -> Result<Report, InputError> {
     let (mut problem, warm) =
         plcp::io::sparse_json::parse_sparse::<T>(bytes, &file.display().to_string())
             .map_err(in_file(file))?;
@@ -231,16 +262,13 @@ fn solve_sparse<T: Scalar>(
         keep,
     )?;
     let seconds = start.elapsed().as_secs_f64();
-    Ok(path_json(&problem, &run.path, at, seconds))
-}
-
-/// Adds `"key":value` fields (given as JSON text) to a JSON object's text.
-fn append_fields(json: String, fields: &str) -> String {
-    match json.trim_end().strip_suffix('}') {
-        Some(body) if body.trim_end().ends_with('{') => format!("{body}{fields}}}"),
-        Some(body) => format!("{body},{fields}}}"),
-        None => json,
-    }
+    Ok(Report::path(
+        problem,
+        run.path,
+        at,
+        seconds,
+        serde_json::Map::new(),
+    ))
 }
 
 fn lcp<T: Scalar>(file: &std::path::Path) -> Result<String, InputError> {
@@ -252,7 +280,7 @@ fn lcp<T: Scalar>(file: &std::path::Path) -> Result<String, InputError> {
     Ok(lcp_json(&problem, &solution, seconds))
 }
 
-fn run(command: Command) -> Result<String, InputError> {
+fn run(command: Command) -> Result<Report, InputError> {
     // the process's one-time costs (CPU feature detection, first touch of
     // the engine's code: see plcp::warm_up) before the input is read, so
     // that the solve's timing is the solve's
@@ -286,13 +314,14 @@ fn run(command: Command) -> Result<String, InputError> {
         }
         Command::Sequence { file, threads } => {
             one_thread(threads);
-            sequence(&file, threads)
+            sequence(&file, threads).map(Report::Text)
         }
         Command::Lcp { file, precision } => match precision {
             Precision::F32 => lcp::<f32>(&file),
             Precision::F64 => lcp::<f64>(&file),
             Precision::F128 => lcp::<faer::fx128>(&file),
-        },
+        }
+        .map(Report::Text),
     }
 }
 
@@ -408,10 +437,13 @@ fn main() -> ExitCode {
     }));
     let result = std::panic::catch_unwind(move || run(cli.command));
     match result {
-        Ok(Ok(json)) => {
+        Ok(Ok(report)) => {
             let mut out = std::io::stdout().lock();
             // A closed pipe is not worth a panic or a second message.
-            let _ = writeln!(out, "{json}").and_then(|_| out.flush());
+            let _ = report
+                .write(&mut out)
+                .and_then(|_| writeln!(out))
+                .and_then(|_| out.flush());
             ExitCode::SUCCESS
         }
         Ok(Err(InputError(msg))) => {

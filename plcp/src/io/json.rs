@@ -8,6 +8,10 @@
 //! ```
 //!
 //! * `M`: the matrix as a list of rows (row-major), square, of order `p + n`;
+//!   or the name of a Matrix Market file holding it (`"M": "m.mtx"`, relative
+//!   to the problem file's directory; see [`super::mtx`]): the fast way to
+//!   hand over a large `M`, written by `scipy.io.mmwrite` and most numerical
+//!   tools;
 //! * `q`, `d`: vectors of that length;
 //! * `lambda_max`: a number, or `null`, absent or the string `"inf"` for infinity;
 //! * `free`: the number `p` of free variables (the first `p` unknowns and
@@ -21,6 +25,9 @@
 //! Any other key is an error naming it, its line and column and the accepted
 //! keys (a misspelt `lambda_max` would otherwise change the problem silently).
 //! The file must be UTF-8 throughout. Syntax errors give the file, line and column.
+//! Numbers are read correctly rounded (serde_json's `float_roundtrip`: its
+//! default reader rounds about one decimal number in ten to a neighbouring
+//! `f64`, which would solve a problem next to the one written).
 //!
 //! ```
 //! let text = r#"{"M": [[2, 1], [1, 2]], "q": [1, 1], "d": [-1, -0.5]}"#;
@@ -86,11 +93,158 @@ impl<'de> Deserialize<'de> for Num {
     }
 }
 
+/// `M` as written: rows of numbers (read into one row-major buffer as they
+/// are parsed, no vector per row), or the name of a Matrix Market file.
+enum MatrixIn {
+    Rows {
+        /// The entries, row by row.
+        values: Vec<f64>,
+        /// The number of rows.
+        rows: usize,
+        /// The length of row 0.
+        cols: usize,
+        /// The first row whose length differs from row 0's: index, length.
+        ragged: Option<(usize, usize)>,
+    },
+    File(String),
+}
+
+impl<'de> Deserialize<'de> for MatrixIn {
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        use serde::de::{DeserializeSeed, SeqAccess, Visitor};
+        /// One row, appended to the buffer; its value is the row's length.
+        struct Row<'a>(&'a mut Vec<f64>);
+        impl<'de> DeserializeSeed<'de> for Row<'_> {
+            type Value = usize;
+            fn deserialize<D: serde::Deserializer<'de>>(self, d: D) -> Result<usize, D::Error> {
+                d.deserialize_seq(self)
+            }
+        }
+        impl<'de> Visitor<'de> for Row<'_> {
+            type Value = usize;
+            fn expecting(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+                f.write_str("a row of numbers")
+            }
+            fn visit_seq<A: SeqAccess<'de>>(self, mut seq: A) -> Result<usize, A::Error> {
+                let mut len = 0;
+                while let Some(Num(v)) = seq.next_element()? {
+                    self.0.push(v);
+                    len += 1;
+                }
+                Ok(len)
+            }
+        }
+        struct V;
+        impl<'de> Visitor<'de> for V {
+            type Value = MatrixIn;
+            fn expecting(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+                f.write_str("a list of rows, or the name of a Matrix Market file")
+            }
+            fn visit_str<E: serde::de::Error>(self, v: &str) -> Result<MatrixIn, E> {
+                Ok(MatrixIn::File(v.to_string()))
+            }
+            fn visit_seq<A: SeqAccess<'de>>(self, mut seq: A) -> Result<MatrixIn, A::Error> {
+                let mut values = Vec::new();
+                let (mut rows, mut cols, mut ragged) = (0, 0, None);
+                while let Some(len) = seq.next_element_seed(Row(&mut values))? {
+                    if rows == 0 {
+                        // the first row gives the order: reserve the square
+                        cols = len;
+                        values.reserve(len.saturating_mul(len.saturating_sub(1)).min(1 << 28));
+                    } else if len != cols && ragged.is_none() {
+                        ragged = Some((rows, len));
+                    }
+                    rows += 1;
+                }
+                Ok(MatrixIn::Rows {
+                    values,
+                    rows,
+                    cols,
+                    ragged,
+                })
+            }
+        }
+        d.deserialize_any(V)
+    }
+}
+
+/// A dense `M` from a [`MatrixIn`]; `file` is the problem file (a Matrix
+/// Market file is named relative to its directory).
+fn dense_m<T: Scalar>(m: MatrixIn, file: &str) -> Result<Mat<T>, PlcpError> {
+    let (values, rows, cols, column_major) = match m {
+        MatrixIn::Rows {
+            values,
+            rows,
+            cols,
+            ragged,
+        } => {
+            if let Some((i, len)) = ragged {
+                return Err(PlcpError::Dimension {
+                    what: "M".into(),
+                    expected: format!("{cols} entries in every row (as in row 0)"),
+                    found: format!("row {i} with {len} entries"),
+                });
+            }
+            (values, rows, cols, false)
+        }
+        MatrixIn::File(name) => {
+            let mtx = super::mtx::read_mtx(&super::mtx::beside(file, &name))?;
+            check_order("the order of M", mtx.rows.max(mtx.cols)).map_err(|why| {
+                PlcpError::Invalid {
+                    what: "M".into(),
+                    why,
+                }
+            })?;
+            let (rows, cols) = (mtx.rows, mtx.cols);
+            let values = match mtx.data {
+                super::mtx::MtxData::Dense(v) => v,
+                super::mtx::MtxData::Triplets(t) => {
+                    let mut v = vec![0.0; rows * cols];
+                    for (i, j, x) in t {
+                        v[i + j * rows] += x;
+                    }
+                    v
+                }
+            };
+            (values, rows, cols, true)
+        }
+    };
+    if rows == 0 {
+        return Err(PlcpError::Invalid {
+            what: "M".into(),
+            why: "M is empty (a problem of order 0)".into(),
+        });
+    }
+    if cols != rows {
+        return Err(PlcpError::Dimension {
+            what: "M".into(),
+            expected: "a square matrix".into(),
+            found: format!("{rows} rows of {cols} entries ({rows} x {cols})"),
+        });
+    }
+    check_order("the order of M", rows).map_err(|why| PlcpError::Invalid {
+        what: "M".into(),
+        why,
+    })?;
+    let mut m = Mat::<T>::zeros(rows, cols);
+    for j in 0..cols {
+        for i in 0..rows {
+            let v = if column_major {
+                values[i + j * rows]
+            } else {
+                values[i * cols + j]
+            };
+            m[(i, j)] = convert_with("M", || format!("({i}, {j})"), v)?;
+        }
+    }
+    Ok(m)
+}
+
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
 struct RawPlcp {
     #[serde(rename = "M", alias = "m")]
-    m: Vec<Vec<Num>>,
+    m: MatrixIn,
     q: Vec<Num>,
     d: Vec<Num>,
     #[serde(default)]
@@ -148,34 +302,8 @@ fn key_column(text: &str, line: usize, column: usize, key: &str) -> usize {
 pub fn parse_plcp<T: Scalar>(bytes: &[u8], file: &str) -> Result<Plcp<T>, PlcpError> {
     let text = utf8_in(bytes, file)?;
     let raw: RawPlcp = serde_json::from_str(text).map_err(|e| parse_error(text, file, e))?;
-    let dim = raw.m.len();
-    if dim == 0 {
-        return Err(PlcpError::Invalid {
-            what: "M".into(),
-            why: "M is empty (a problem of order 0)".into(),
-        });
-    }
-    let ncols = raw.m[0].len();
-    for (i, row) in raw.m.iter().enumerate() {
-        if row.len() != ncols {
-            return Err(PlcpError::Dimension {
-                what: "M".into(),
-                expected: format!("{ncols} entries in every row (as in row 0)"),
-                found: format!("row {i} with {} entries", row.len()),
-            });
-        }
-    }
-    if ncols != dim {
-        return Err(PlcpError::Dimension {
-            what: "M".into(),
-            expected: "a square matrix".into(),
-            found: format!("{dim} rows of {ncols} entries ({dim} x {ncols})"),
-        });
-    }
-    check_order("the order of M", dim).map_err(|why| PlcpError::Invalid {
-        what: "M".into(),
-        why,
-    })?;
+    let m = dense_m::<T>(raw.m, file)?;
+    let dim = m.nrows();
     for (what, v) in [("q", &raw.q), ("d", &raw.d)] {
         if v.len() != dim {
             return Err(PlcpError::Dimension {
@@ -190,12 +318,6 @@ pub fn parse_plcp<T: Scalar>(bytes: &[u8], file: &str) -> Result<Plcp<T>, PlcpEr
             what: "free".into(),
             why: format!("{} free variables but M has order {dim}", raw.free),
         });
-    }
-    let mut m = Mat::<T>::zeros(dim, dim);
-    for (i, row) in raw.m.iter().enumerate() {
-        for (j, v) in row.iter().enumerate() {
-            m[(i, j)] = convert_with("M", || format!("({i}, {j})"), v.0)?;
-        }
     }
     let col = |what: &str, v: &[Num]| -> Result<Col<T>, PlcpError> {
         let mut c = Col::<T>::zeros(v.len());
@@ -225,7 +347,7 @@ pub fn parse_plcp<T: Scalar>(bytes: &[u8], file: &str) -> Result<Plcp<T>, PlcpEr
 #[serde(deny_unknown_fields)]
 struct RawSequence {
     #[serde(rename = "M", alias = "m")]
-    m: Vec<Vec<Num>>,
+    m: MatrixIn,
     targets: Vec<Vec<Num>>,
     /// An annotation: any JSON value, read and ignored.
     #[serde(default, rename = "comment")]
@@ -239,28 +361,13 @@ pub fn read_sequence(path: &std::path::Path) -> Result<(Mat<f64>, Vec<Col<f64>>)
     let file = path.display().to_string();
     let text = utf8_in(&bytes, &file)?;
     let raw: RawSequence = serde_json::from_str(text).map_err(|e| parse_error(text, &file, e))?;
-    let dim = raw.m.len();
-    if dim == 0 || raw.m.iter().any(|r| r.len() != dim) {
-        return Err(PlcpError::Dimension {
-            what: "M".into(),
-            expected: "a square matrix of order at least 1".into(),
-            found: format!(
-                "{dim} rows of lengths {:?}",
-                raw.m.iter().map(Vec::len).collect::<Vec<_>>()
-            ),
-        });
-    }
+    let m = dense_m::<f64>(raw.m, &file)?;
+    let dim = m.nrows();
     if raw.targets.is_empty() {
         return Err(PlcpError::Invalid {
             what: "targets".into(),
             why: "no target (at least g_0 is needed)".into(),
         });
-    }
-    let mut m = Mat::<f64>::zeros(dim, dim);
-    for (i, row) in raw.m.iter().enumerate() {
-        for (j, v) in row.iter().enumerate() {
-            m[(i, j)] = convert_with("M", || format!("({i}, {j})"), v.0)?;
-        }
     }
     let mut targets = Vec::with_capacity(raw.targets.len());
     for (k, g) in raw.targets.iter().enumerate() {
@@ -301,6 +408,11 @@ pub fn read_plcp<T: Scalar>(path: &std::path::Path) -> Result<Plcp<T>, PlcpError
 }
 
 // ---------------------------------------------------------------- output
+//
+// The output is serialised from views of the path (no copy of its columns)
+// straight into the writer: at n = 2000 a path of 1000 segments is 109 MB of
+// JSON, and building it as owned vectors and one `String` first cost more
+// than the solve (`docs/performance.md`, Input).
 
 type Num64 = Option<f64>;
 
@@ -312,44 +424,66 @@ fn f(v: f64) -> Num64 {
     v.is_finite().then_some(v)
 }
 
-fn vec<T: Scalar>(c: &Col<T>) -> Vec<Num64> {
-    (0..c.nrows()).map(|i| num(c[i])).collect()
+/// A column written as a JSON array of numbers (`null` where not finite).
+struct ColOut<'a, T: Scalar>(&'a Col<T>);
+
+impl<T: Scalar> Serialize for ColOut<'_, T> {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        s.collect_seq((0..self.0.nrows()).map(|i| num(self.0[i])))
+    }
 }
 
-/// `Some(vec)` in the mixed form, `None` (key omitted) in the standard form.
-fn free_vec<T: Scalar>(free: usize, c: &Col<T>) -> Option<Vec<Num64>> {
-    (free > 0).then(|| vec(c))
+/// `from + slope * dl`, element by element as [`crate::path::Segment::z0`]
+/// computes it (the same numbers), written without storing the column.
+struct AffineOut<'a, T: Scalar> {
+    from: &'a Col<T>,
+    slope: &'a Col<T>,
+    dl: T,
+}
+
+impl<T: Scalar> Serialize for AffineOut<'_, T> {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        let (from, slope, dl) = (self.from, self.slope, self.dl);
+        s.collect_seq((0..from.nrows()).map(|i| num(from[i] + slope[i] * dl)))
+    }
+}
+
+/// `Some(column)` in the mixed form, `None` (key omitted) in the standard form.
+fn free_col<T: Scalar>(free: usize, c: &Col<T>) -> Option<ColOut<'_, T>> {
+    (free > 0).then_some(ColOut(c))
 }
 
 #[derive(Serialize)]
-struct PointOut {
+#[serde(bound = "")]
+struct PointOut<'a, T: Scalar> {
     lambda: Num64,
-    z: Vec<Num64>,
-    w: Vec<Num64>,
+    z: ColOut<'a, T>,
+    w: ColOut<'a, T>,
     #[serde(skip_serializing_if = "Option::is_none")]
-    u: Option<Vec<Num64>>,
+    u: Option<ColOut<'a, T>>,
 }
 
-impl PointOut {
-    fn new<T: Scalar>(free: usize, p: &Point<T>) -> Self {
+impl<'a, T: Scalar> PointOut<'a, T> {
+    fn new(free: usize, p: &'a Point<T>) -> Self {
         Self {
             lambda: num(p.lambda),
-            z: vec(&p.z),
-            w: vec(&p.w),
-            u: free_vec(free, &p.u),
+            z: ColOut(&p.z),
+            w: ColOut(&p.w),
+            u: free_col(free, &p.u),
         }
     }
 }
 
 #[derive(Serialize)]
-struct AtOut {
+#[serde(bound = "")]
+struct AtOut<'a, T: Scalar> {
     lambda: Num64,
     #[serde(skip_serializing_if = "Option::is_none")]
-    z: Option<Vec<Num64>>,
+    z: Option<ColOut<'a, T>>,
     #[serde(skip_serializing_if = "Option::is_none")]
-    w: Option<Vec<Num64>>,
+    w: Option<ColOut<'a, T>>,
     #[serde(skip_serializing_if = "Option::is_none")]
-    u: Option<Vec<Num64>>,
+    u: Option<ColOut<'a, T>>,
     #[serde(skip_serializing_if = "Option::is_none")]
     residual: Option<ResidualOut>,
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -365,20 +499,81 @@ struct BreakpointOut {
     turning: bool,
 }
 
+/// Names written as a JSON array of strings.
+struct NamesOut<'a>(&'a [crate::path::Var]);
+
+impl Serialize for NamesOut<'_> {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        use serde::ser::SerializeSeq;
+        // each name written through its `Display`, without a `String` each
+        struct Name<'a>(&'a crate::path::Var);
+        impl Serialize for Name<'_> {
+            fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+                s.collect_str(self.0)
+            }
+        }
+        let mut seq = s.serialize_seq(Some(self.0.len()))?;
+        for v in self.0 {
+            seq.serialize_element(&Name(v))?;
+        }
+        seq.end()
+    }
+}
+
 #[derive(Serialize)]
-struct SegmentOut {
+#[serde(bound = "")]
+struct SegmentOut<'a, T: Scalar> {
     lambda_from: Num64,
     lambda_to: Num64,
     unbounded: bool,
-    basis: Vec<String>,
-    z0: Vec<Num64>,
-    dz: Vec<Num64>,
-    w0: Vec<Num64>,
-    dw: Vec<Num64>,
+    basis: NamesOut<'a>,
+    z0: AffineOut<'a, T>,
+    dz: ColOut<'a, T>,
+    w0: AffineOut<'a, T>,
+    dw: ColOut<'a, T>,
     #[serde(skip_serializing_if = "Option::is_none")]
-    u0: Option<Vec<Num64>>,
+    u0: Option<AffineOut<'a, T>>,
     #[serde(skip_serializing_if = "Option::is_none")]
-    du: Option<Vec<Num64>>,
+    du: Option<ColOut<'a, T>>,
+}
+
+/// The segments, each built as it is written.
+struct SegmentsOut<'a, T: Scalar> {
+    free: usize,
+    segments: &'a [crate::path::Segment<T>],
+}
+
+impl<T: Scalar> Serialize for SegmentsOut<'_, T> {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        let p = self.free;
+        s.collect_seq(self.segments.iter().map(|s| {
+            let dl = -s.lambda_from;
+            SegmentOut {
+                lambda_from: num(s.lambda_from),
+                lambda_to: if s.unbounded { None } else { num(s.lambda_to) },
+                unbounded: s.unbounded,
+                basis: NamesOut(&s.basis),
+                z0: AffineOut {
+                    from: &s.z_from,
+                    slope: &s.dz,
+                    dl,
+                },
+                dz: ColOut(&s.dz),
+                w0: AffineOut {
+                    from: &s.w_from,
+                    slope: &s.dw,
+                    dl,
+                },
+                dw: ColOut(&s.dw),
+                u0: (p > 0).then_some(AffineOut {
+                    from: &s.u_from,
+                    slope: &s.du,
+                    dl,
+                }),
+                du: free_col(p, &s.du),
+            }
+        }))
+    }
 }
 
 #[derive(Serialize, Clone, Copy)]
@@ -448,31 +643,32 @@ impl InfoOut {
 }
 
 #[derive(Serialize)]
-struct RayOut {
-    start: PointOut,
+#[serde(bound = "")]
+struct RayOut<'a, T: Scalar> {
+    start: PointOut<'a, T>,
     dlambda: Num64,
-    dz: Vec<Num64>,
-    dw: Vec<Num64>,
+    dz: ColOut<'a, T>,
+    dw: ColOut<'a, T>,
     #[serde(skip_serializing_if = "Option::is_none")]
-    du: Option<Vec<Num64>>,
+    du: Option<ColOut<'a, T>>,
 }
 
 /// The keys `plcp solve` and `plcp lcp` share, in both outputs in this order
 /// (one reader handles both): `lambda_reached`, `pivots`, `breakpoints`,
 /// `segments`, `end`.
 #[derive(Serialize)]
-struct TraceOut {
+#[serde(bound = "")]
+struct TraceOut<'a, T: Scalar> {
     lambda_reached: Num64,
     pivots: usize,
     breakpoints: Vec<BreakpointOut>,
-    segments: Vec<SegmentOut>,
-    end: PointOut,
+    segments: SegmentsOut<'a, T>,
+    end: PointOut<'a, T>,
 }
 
-impl TraceOut {
+impl<'a, T: Scalar> TraceOut<'a, T> {
     /// `free` is the number of free variables (`u` is written when positive).
-    fn new<T: Scalar>(free: usize, path: &Path<T>) -> Self {
-        let p = free;
+    fn new(free: usize, path: &'a Path<T>) -> Self {
         Self {
             lambda_reached: num(path.lambda_reached),
             pivots: path.info.pivots,
@@ -487,46 +683,38 @@ impl TraceOut {
                     turning: b.turning,
                 })
                 .collect(),
-            segments: path
-                .segments
-                .iter()
-                .map(|s| SegmentOut {
-                    lambda_from: num(s.lambda_from),
-                    lambda_to: if s.unbounded { None } else { num(s.lambda_to) },
-                    unbounded: s.unbounded,
-                    basis: s.basis.iter().map(|v| v.to_string()).collect(),
-                    z0: vec(&s.z0()),
-                    dz: vec(&s.dz),
-                    w0: vec(&s.w0()),
-                    dw: vec(&s.dw),
-                    u0: free_vec(p, &s.u0()),
-                    du: free_vec(p, &s.du),
-                })
-                .collect(),
-            end: PointOut::new(p, &path.end),
+            segments: SegmentsOut {
+                free,
+                segments: &path.segments,
+            },
+            end: PointOut::new(free, &path.end),
         }
     }
 }
 
 #[derive(Serialize)]
-struct PathOut {
+#[serde(bound = "")]
+struct PathOut<'a, T: Scalar> {
     status: &'static str,
     n: usize,
     free: usize,
     lambda0: Num64,
     lambda_max: Num64,
     #[serde(flatten)]
-    trace: TraceOut,
-    at: Vec<AtOut>,
+    trace: TraceOut<'a, T>,
+    at: Vec<AtOut<'a, T>>,
     residual: ResidualOut,
     timing: TimingOut,
     info: InfoOut,
-    message: String,
+    message: &'a str,
     #[serde(skip_serializing_if = "Option::is_none")]
-    ray: Option<RayOut>,
+    ray: Option<RayOut<'a, T>>,
+    #[serde(flatten)]
+    extra: &'a serde_json::Map<String, serde_json::Value>,
 }
 
-/// The JSON report of a solved path (one line, no trailing newline).
+/// The JSON report of a solved path (one line, no trailing newline): what
+/// [`write_path_json`] writes, as a `String`.
 ///
 /// Keys, in order: `status` ([`Status::as_str`]), `n`, `free`, `lambda0`,
 /// `lambda_max` (`null`: infinity), `lambda_reached`, `pivots`, `breakpoints`
@@ -552,9 +740,39 @@ pub fn path_json<T: Scalar>(
     at: &[f64],
     solve_seconds: f64,
 ) -> String {
+    let mut out = Vec::new();
+    let written = write_path_json(
+        &mut out,
+        problem,
+        path,
+        at,
+        solve_seconds,
+        &serde_json::Map::new(),
+    );
+    match written.map(|_| String::from_utf8(out)) {
+        Ok(Ok(text)) => text,
+        // Serialising these plain structs into memory cannot fail, and
+        // serde_json writes UTF-8; keep the output valid JSON anyway.
+        Ok(Err(e)) => serde_json::json!({"status": "error", "message": e.to_string()}).to_string(),
+        Err(e) => serde_json::json!({"status": "error", "message": e.to_string()}).to_string(),
+    }
+}
+
+/// Writes the report of [`path_json`] to `out` as it is built (the path's
+/// columns are read in place, nothing of the size of the output is held),
+/// followed by the fields of `extra` (for example a `certificate`), in order.
+/// An error is the writer's.
+pub fn write_path_json<T: Scalar, W: std::io::Write>(
+    out: W,
+    problem: &Plcp<T>,
+    path: &Path<T>,
+    at: &[f64],
+    solve_seconds: f64,
+    extra: &serde_json::Map<String, serde_json::Value>,
+) -> std::io::Result<()> {
     let p = problem.free();
     let mut res = path.info.residual.max(residual(problem, &path.end));
-    let at: Vec<AtOut> = at
+    let points: Vec<Option<(Point<T>, Residual)>> = at
         .iter()
         .map(|&l| {
             let point = if l.is_finite() {
@@ -562,36 +780,41 @@ pub fn path_json<T: Scalar>(
             } else {
                 None
             };
-            match point {
-                Some(pt) => {
-                    let r = residual(problem, &pt);
-                    res = res.max(r);
-                    AtOut {
-                        lambda: f(l),
-                        z: Some(vec(&pt.z)),
-                        w: Some(vec(&pt.w)),
-                        u: free_vec(p, &pt.u),
-                        residual: Some(r.into()),
-                        error: None,
-                    }
-                }
-                None => AtOut {
-                    lambda: f(l),
-                    z: None,
-                    w: None,
-                    u: None,
-                    residual: None,
-                    error: Some(format!(
-                        "lambda = {l} lies outside the traced range [{}, {}] (status {})",
-                        path.lambda0.to_f64(),
-                        path.lambda_reached.to_f64(),
-                        path.status.as_str()
-                    )),
-                },
-            }
+            point.map(|pt| {
+                let r = residual(problem, &pt);
+                res = res.max(r);
+                (pt, r)
+            })
         })
         .collect();
-    let out = PathOut {
+    let at: Vec<AtOut<'_, T>> = at
+        .iter()
+        .zip(&points)
+        .map(|(&l, point)| match point {
+            Some((pt, r)) => AtOut {
+                lambda: f(l),
+                z: Some(ColOut(&pt.z)),
+                w: Some(ColOut(&pt.w)),
+                u: free_col(p, &pt.u),
+                residual: Some((*r).into()),
+                error: None,
+            },
+            None => AtOut {
+                lambda: f(l),
+                z: None,
+                w: None,
+                u: None,
+                residual: None,
+                error: Some(format!(
+                    "lambda = {l} lies outside the traced range [{}, {}] (status {})",
+                    path.lambda0.to_f64(),
+                    path.lambda_reached.to_f64(),
+                    path.status.as_str()
+                )),
+            },
+        })
+        .collect();
+    let report = PathOut {
         status: path.status.as_str(),
         n: problem.n(),
         free: p,
@@ -604,34 +827,35 @@ pub fn path_json<T: Scalar>(
             solve_seconds: f(solve_seconds),
         },
         info: InfoOut::new::<T>(&path.info),
-        message: path.message.clone(),
+        message: &path.message,
         ray: path.ray.as_ref().map(|r| RayOut {
             start: PointOut::new(p, &r.start),
             dlambda: num(r.dlambda),
-            dz: vec(&r.dz),
-            dw: vec(&r.dw),
-            du: free_vec(p, &r.du),
+            dz: ColOut(&r.dz),
+            dw: ColOut(&r.dw),
+            du: free_col(p, &r.du),
         }),
+        extra,
     };
-    serde_json::to_string(&out).unwrap_or_else(|e| {
-        // Serialising these plain structs cannot fail; keep the output valid JSON anyway.
-        serde_json::json!({"status": "error", "message": e.to_string()}).to_string()
-    })
+    let mut out = std::io::BufWriter::with_capacity(1 << 16, out);
+    serde_json::to_writer(&mut out, &report).map_err(std::io::Error::other)?;
+    std::io::Write::flush(&mut out)
 }
 
 #[derive(Serialize)]
-struct LcpOut {
+#[serde(bound = "")]
+struct LcpOut<'a, T: Scalar> {
     status: &'static str,
     n: usize,
-    z: Vec<Num64>,
-    w: Vec<Num64>,
+    z: ColOut<'a, T>,
+    w: ColOut<'a, T>,
     #[serde(flatten)]
-    trace: TraceOut,
+    trace: TraceOut<'a, T>,
     residual: ResidualOut,
     siconos_error: Num64,
     timing: TimingOut,
     info: InfoOut,
-    message: String,
+    message: &'a str,
 }
 
 /// The name of an LCP outcome: `"solved"` for [`Status::Reached`] (and for an
@@ -678,12 +902,13 @@ pub fn lcp_json<T: Scalar>(lcp: &Lcp<T>, sol: &LcpSolution<T>, solve_seconds: f6
             )
         })
         .unwrap_or_default();
+    let as_path = sol.as_path();
     let out = LcpOut {
         status: lcp_status(sol.status),
         n,
-        z: vec(&sol.z),
-        w: vec(&sol.w),
-        trace: TraceOut::new(0, &sol.as_path()),
+        z: ColOut(&sol.z),
+        w: ColOut(&sol.w),
+        trace: TraceOut::new(0, &as_path),
         residual: sol.info.residual.max(fresh).into(),
         siconos_error: f(super::siconos::siconos_error(
             lcp.q(),
@@ -694,7 +919,7 @@ pub fn lcp_json<T: Scalar>(lcp: &Lcp<T>, sol: &LcpSolution<T>, solve_seconds: f6
             solve_seconds: f(solve_seconds),
         },
         info: InfoOut::new::<T>(&sol.info),
-        message: sol.message.clone(),
+        message: &sol.message,
     };
     serde_json::to_string(&out).unwrap_or_else(|e| {
         serde_json::json!({"status": "error", "message": e.to_string()}).to_string()

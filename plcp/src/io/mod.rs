@@ -1,5 +1,6 @@
 //! Reading and writing problems: plcp's JSON format (`json`, with the `json`
-//! feature) and the Siconos `.dat` format ([`siconos`]).
+//! feature), the Siconos `.dat` format ([`siconos`]), and Matrix Market files
+//! for `M` ([`mtx`]).
 //!
 //! Every reader parses numbers as `f64` and converts them to the working
 //! precision `T` afterwards. A value that is not finite, or that overflows `T`
@@ -17,6 +18,7 @@
 
 #[cfg(feature = "json")]
 pub mod json;
+pub mod mtx;
 pub mod siconos;
 #[cfg(feature = "json")]
 pub mod sparse_json;

@@ -6,6 +6,9 @@
 //!  "q": [-1, -1, -1], "d": [0.1, 0.1, 0.1], "lambda_max": 2, "free": 0, "warm_basis": "z"}
 //! ```
 //!
+//! * `M_sparse`: an object, or the name of a Matrix Market file (`"m.mtx"`,
+//!   relative to the problem file's directory; [`super::mtx`], coordinate or
+//!   array, explicit zeros dropped);
 //! * `M_sparse.order`: the order `p + n` of `M`;
 //! * `M_sparse.triplets`: `[row, column, value]` entries (0-based; a repeated
 //!   position is summed, explicit zeros are dropped), **or**
@@ -63,11 +66,37 @@ enum RawWarm {
     List(Vec<String>),
 }
 
+/// `M_sparse` as written: inline, or the name of a Matrix Market file.
+enum SparseIn {
+    Inline(RawSparseM),
+    File(String),
+}
+
+impl<'de> Deserialize<'de> for SparseIn {
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        struct V;
+        impl<'de> serde::de::Visitor<'de> for V {
+            type Value = SparseIn;
+            fn expecting(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+                f.write_str("an object {\"order\", \"triplets\" or \"csc\"}, or the name of a Matrix Market file")
+            }
+            fn visit_str<E: serde::de::Error>(self, v: &str) -> Result<SparseIn, E> {
+                Ok(SparseIn::File(v.to_string()))
+            }
+            fn visit_map<A: serde::de::MapAccess<'de>>(self, map: A) -> Result<SparseIn, A::Error> {
+                RawSparseM::deserialize(serde::de::value::MapAccessDeserializer::new(map))
+                    .map(SparseIn::Inline)
+            }
+        }
+        d.deserialize_any(V)
+    }
+}
+
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
 struct RawSparse {
     #[serde(rename = "M_sparse")]
-    m: RawSparseM,
+    m: SparseIn,
     q: Vec<f64>,
     d: Vec<f64>,
     #[serde(default)]
@@ -91,7 +120,8 @@ fn invalid(file: &str, what: impl Into<String>, why: impl Into<String>) -> PlcpE
 
 /// True when the JSON text is the sparse format (it has an `M_sparse` key).
 pub fn is_sparse_json(bytes: &[u8]) -> bool {
-    bytes.windows(10).any(|w| w == b"\"M_sparse\"")
+    // a vectorised substring search: the file may be a dense M of 100 MB
+    memchr::memmem::find(bytes, b"\"M_sparse\"").is_some()
 }
 
 /// Parses the sparse format: the problem and the warm basis, if one is given.
@@ -106,7 +136,37 @@ pub fn parse_sparse<T: Scalar>(
         column: e.column().max(1),
         message: e.to_string(),
     })?;
-    let dim = raw.m.order;
+    let inline = match raw.m {
+        SparseIn::Inline(m) => m,
+        SparseIn::File(name) => {
+            let mtx = super::mtx::read_mtx(&super::mtx::beside(file, &name))?;
+            if mtx.rows != mtx.cols {
+                return Err(invalid(
+                    file,
+                    "M_sparse",
+                    format!(
+                        "{name} holds a {} x {} matrix: M must be square",
+                        mtx.rows, mtx.cols
+                    ),
+                ));
+            }
+            let triplets = match mtx.data {
+                super::mtx::MtxData::Triplets(t) => t,
+                super::mtx::MtxData::Dense(v) => (0..mtx.cols)
+                    .flat_map(|j| (0..mtx.rows).map(move |i| (i, j)))
+                    .zip(v)
+                    .filter(|&(_, x)| x != 0.0)
+                    .map(|((i, j), x)| (i, j, x))
+                    .collect(),
+            };
+            RawSparseM {
+                order: mtx.rows,
+                triplets: Some(triplets),
+                csc: None,
+            }
+        }
+    };
+    let dim = inline.order;
     let mut triplets: Vec<(usize, usize, T)> = Vec::new();
     let mut push = |i: usize, j: usize, v: f64, k: usize| -> Result<(), PlcpError> {
         if i >= dim || j >= dim {
@@ -122,7 +182,7 @@ pub fn parse_sparse<T: Scalar>(
         }
         Ok(())
     };
-    match (&raw.m.triplets, &raw.m.csc) {
+    match (&inline.triplets, &inline.csc) {
         (Some(t), None) => {
             for (k, &(i, j, v)) in t.iter().enumerate() {
                 push(i, j, v, k)?;
@@ -175,7 +235,8 @@ pub fn parse_sparse<T: Scalar>(
     let lambda_max = match &raw.lambda_max {
         None | Some(serde_json::Value::Null) => None,
         Some(serde_json::Value::String(s)) if s == "inf" => None,
-        Some(serde_json::Value::Number(x)) => x.as_f64().map(T::from_f64),
+        Some(serde_json::Value::Number(x)) => super::json::lambda_max_from_f64::<T>(x.as_f64())
+            .map_err(|e| invalid(file, "lambda_max", e.to_string()))?,
         Some(other) => {
             return Err(invalid(
                 file,
@@ -184,7 +245,7 @@ pub fn parse_sparse<T: Scalar>(
             ))
         }
     };
-    let lambda0 = T::from_f64(raw.lambda0.unwrap_or(0.0));
+    let lambda0 = super::convert::<T>("lambda0", "", raw.lambda0.unwrap_or(0.0))?;
     problem = problem.with_range(lambda0, lambda_max)?;
     let n = dim.saturating_sub(p);
     let warm = match raw.warm_basis {
