@@ -41,6 +41,27 @@ fn instance(n: usize) -> (Vec<Vec<f64>>, Vec<f64>, Vec<f64>) {
     (m, q, d)
 }
 
+/// The bytes `numpy.save` writes for a float64 matrix in C order (format 1.0).
+fn npy_c_order(m: &[Vec<f64>]) -> Vec<u8> {
+    let header = format!(
+        "{{'descr': '<f8', 'fortran_order': False, 'shape': ({}, {}), }}",
+        m.len(),
+        m[0].len()
+    );
+    // the header is padded with spaces to a multiple of 64 bytes with the preamble
+    let total = (10 + header.len() + 1).div_ceil(64) * 64;
+    let padded = format!("{header:<width$}\n", width = total - 10 - 1);
+    let mut out = b"\x93NUMPY\x01\x00".to_vec();
+    out.extend_from_slice(&(padded.len() as u16).to_le_bytes());
+    out.extend_from_slice(padded.as_bytes());
+    for row in m {
+        for v in row {
+            out.extend_from_slice(&v.to_le_bytes());
+        }
+    }
+    out
+}
+
 fn run_cli(file: &std::path::Path) -> serde_json::Value {
     let out = Command::new(BIN)
         .args(["solve", file.to_str().unwrap()])
@@ -75,6 +96,10 @@ fn dense_matrix_market_m_gives_the_inline_path_bit_for_bit() {
     let by_file = format!("{{\"M\": \"m.mtx\", \"q\": {q:?}, \"d\": {d:?}, \"lambda_max\": 5}}");
     std::fs::write(dir.join("inline.json"), &inline).unwrap();
     std::fs::write(dir.join("file.json"), &by_file).unwrap();
+    // the same M as NumPy writes it (numpy.save, C order, little-endian f8)
+    std::fs::write(dir.join("m.npy"), npy_c_order(&m)).unwrap();
+    let by_npy = by_file.replace("m.mtx", "m.npy");
+    std::fs::write(dir.join("npy.json"), &by_npy).unwrap();
 
     // the library: the same problem, entry for entry, and the same path
     let a =
@@ -99,11 +124,16 @@ fn dense_matrix_market_m_gives_the_inline_path_bit_for_bit() {
     let lb: Vec<u64> = pb.breakpoints.iter().map(|b| b.lambda.to_bits()).collect();
     assert_eq!(la, lb);
 
+    let c = parse_plcp::<f64>(by_npy.as_bytes(), dir.join("npy.json").to_str().unwrap()).unwrap();
+    assert!((0..n).all(|i| (0..n).all(|j| a.m()[(i, j)].to_bits() == c.m()[(i, j)].to_bits())));
+
     // the command line: identical reports
     let va = without_timing(run_cli(&dir.join("inline.json")));
     let vb = without_timing(run_cli(&dir.join("file.json")));
+    let vc = without_timing(run_cli(&dir.join("npy.json")));
     assert_eq!(va["status"], "reached");
     assert_eq!(va, vb);
+    assert_eq!(va, vc);
 }
 
 #[test]

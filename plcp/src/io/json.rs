@@ -8,10 +8,10 @@
 //! ```
 //!
 //! * `M`: the matrix as a list of rows (row-major), square, of order `p + n`;
-//!   or the name of a Matrix Market file holding it (`"M": "m.mtx"`, relative
-//!   to the problem file's directory; see [`super::mtx`]): the fast way to
-//!   hand over a large `M`, written by `scipy.io.mmwrite` and most numerical
-//!   tools;
+//!   or the name of a file holding it, relative to the problem file's
+//!   directory: NumPy's `.npy` (`"M": "m.npy"`, [`super::npy`]; binary, read
+//!   at the speed of a copy: the fast way to hand over a large `M`) or Matrix
+//!   Market (`"M": "m.mtx"`, [`super::mtx`]), told apart by their first bytes;
 //! * `q`, `d`: vectors of that length;
 //! * `lambda_max`: a number, or `null`, absent or the string `"inf"` for infinity;
 //! * `free`: the number `p` of free variables (the first `p` unknowns and
@@ -94,7 +94,7 @@ impl<'de> Deserialize<'de> for Num {
 }
 
 /// `M` as written: rows of numbers (read into one row-major buffer as they
-/// are parsed, no vector per row), or the name of a Matrix Market file.
+/// are parsed, no vector per row), or the name of a `.npy` or Matrix Market file.
 enum MatrixIn {
     Rows {
         /// The entries, row by row.
@@ -138,7 +138,7 @@ impl<'de> Deserialize<'de> for MatrixIn {
         impl<'de> Visitor<'de> for V {
             type Value = MatrixIn;
             fn expecting(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
-                f.write_str("a list of rows, or the name of a Matrix Market file")
+                f.write_str("a list of rows, or the name of a .npy or Matrix Market file")
             }
             fn visit_str<E: serde::de::Error>(self, v: &str) -> Result<MatrixIn, E> {
                 Ok(MatrixIn::File(v.to_string()))
@@ -188,7 +188,7 @@ fn dense_m<T: Scalar>(m: MatrixIn, file: &str) -> Result<Mat<T>, PlcpError> {
             (values, rows, cols, false)
         }
         MatrixIn::File(name) => {
-            let mtx = super::mtx::read_mtx(&super::mtx::beside(file, &name))?;
+            let mtx = super::npy::read_matrix_file(&super::mtx::beside(file, &name))?;
             check_order("the order of M", mtx.rows.max(mtx.cols)).map_err(|why| {
                 PlcpError::Invalid {
                     what: "M".into(),

@@ -1,6 +1,6 @@
 //! Reading and writing problems: plcp's JSON format (`json`, with the `json`
-//! feature), the Siconos `.dat` format ([`siconos`]), and Matrix Market files
-//! for `M` ([`mtx`]).
+//! feature), the Siconos `.dat` format ([`siconos`]), and `M` from a Matrix
+//! Market ([`mtx`]) or NumPy ([`npy`]) file.
 //!
 //! Every reader parses numbers as `f64` and converts them to the working
 //! precision `T` afterwards. A value that is not finite, or that overflows `T`
@@ -19,6 +19,7 @@
 #[cfg(feature = "json")]
 pub mod json;
 pub mod mtx;
+pub mod npy;
 pub mod siconos;
 #[cfg(feature = "json")]
 pub mod sparse_json;

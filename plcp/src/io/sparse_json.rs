@@ -6,9 +6,9 @@
 //!  "q": [-1, -1, -1], "d": [0.1, 0.1, 0.1], "lambda_max": 2, "free": 0, "warm_basis": "z"}
 //! ```
 //!
-//! * `M_sparse`: an object, or the name of a Matrix Market file (`"m.mtx"`,
-//!   relative to the problem file's directory; [`super::mtx`], coordinate or
-//!   array, explicit zeros dropped);
+//! * `M_sparse`: an object, or the name of a Matrix Market (`"m.mtx"`,
+//!   [`super::mtx`], coordinate or array) or NumPy (`"m.npy"`, [`super::npy`])
+//!   file, relative to the problem file's directory (explicit zeros dropped);
 //! * `M_sparse.order`: the order `p + n` of `M`;
 //! * `M_sparse.triplets`: `[row, column, value]` entries (0-based; a repeated
 //!   position is summed, explicit zeros are dropped), **or**
@@ -139,7 +139,7 @@ pub fn parse_sparse<T: Scalar>(
     let inline = match raw.m {
         SparseIn::Inline(m) => m,
         SparseIn::File(name) => {
-            let mtx = super::mtx::read_mtx(&super::mtx::beside(file, &name))?;
+            let mtx = super::npy::read_matrix_file(&super::mtx::beside(file, &name))?;
             if mtx.rows != mtx.cols {
                 return Err(invalid(
                     file,
