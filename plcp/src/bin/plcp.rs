@@ -1,7 +1,7 @@
 //! The plcp command line.
 //!
 //! ```text
-//! plcp solve FILE.json [--method lemke|wolfe] [--precision f32|f64|f128|exact] [--lambda-max X] [--at L1,L2,...] [--certify]
+//! plcp solve FILE.json [--method lemke|wolfe] [--precision f32|f64|f128|exact] [--lambda-max X] [--at L1,L2,...] [--certify] [--quiet]
 //! plcp lcp FILE.dat [--precision f32|f64|f128]
 //! ```
 //!
@@ -18,6 +18,10 @@
 //! exact arithmetic ([`plcp::exact::trace`], the data read as `f64`, order at
 //! most [`plcp::exact::EXACT_MAX_DIM`]); its JSON adds `exact_breakpoints`
 //! (short fractions such as `"13/3"`, else decimals).
+//!
+//! On a terminal, `solve` draws a progress line per breakpoint on stderr
+//! (through the path observer, [`plcp::solve_observed`]); `--quiet` or a
+//! redirected stderr draws nothing.
 //!
 //! Exit codes: 0 when a report was printed (read its `status`), 2 for bad
 //! input of any kind (command line, file, data), 3 for an internal error (a
@@ -70,6 +74,9 @@ enum Command {
         /// Threads for the large products (default: by size; 1 keeps one thread).
         #[arg(long, value_parser = parse_threads)]
         threads: Option<usize>,
+        /// No progress line on stderr (it is drawn only when stderr is a terminal).
+        #[arg(long, short)]
+        quiet: bool,
     },
     /// The MPC user's loop: one M, targets g_0..g_K; the LCP at g_0, then the
     /// path from g_(k-1) to g_k (L = 0..1) for each k, started where the last ended.
@@ -144,15 +151,27 @@ fn in_file(file: &std::path::Path) -> impl Fn(PlcpError) -> InputError + '_ {
     }
 }
 
-fn solve<T: Scalar>(
-    file: &std::path::Path,
+/// The options of `plcp solve`.
+struct SolveOptions {
     method: Method,
     lambda_max: Option<f64>,
-    at: &[f64],
+    at: Vec<f64>,
     certify: bool,
     exact: bool,
     threads: Option<usize>,
-) -> Result<Report, InputError> {
+    quiet: bool,
+}
+
+fn solve<T: Scalar>(file: &std::path::Path, options: &SolveOptions) -> Result<Report, InputError> {
+    let SolveOptions {
+        method,
+        lambda_max,
+        ref at,
+        certify,
+        exact,
+        threads,
+        quiet,
+    } = *options;
     let bytes = plcp::io::read_bytes(file).map_err(in_file(file))?;
     if plcp::io::sparse_json::is_sparse_json(&bytes) && !exact && !certify {
         return solve_sparse::<T>(&bytes, file, method, lambda_max, at);
@@ -183,11 +202,31 @@ fn solve<T: Scalar>(
         }
         return Ok(Report::path(problem, traced.path, at, seconds, extra));
     }
+    // on a terminal, a line per breakpoint (L, pivots, residual) through the
+    // path observer: the same path, bit for bit (plcp/tests/observe.rs)
+    let bar = plcp::progress::Progress::spinner("tracing", quiet);
     let path = if certify {
+        bar.message("tracing, then certifying in exact arithmetic");
         plcp::solve_certified(&problem, &settings)?
+    } else if plcp::progress::enabled(quiet) {
+        let line = bar.clone();
+        let observer = move |_: &plcp::Segment<T>, p: &plcp::Progress<'_, T>| {
+            if let Some(b) = p.breakpoint {
+                line.message(&format!(
+                    "L = {:.6e}, {} breakpoints, {} pivots, residual {:.1e}",
+                    b.lambda.to_f64(),
+                    p.breakpoints,
+                    p.pivots,
+                    b.residual.worst()
+                ));
+            }
+            plcp::Control::Continue
+        };
+        plcp::solve_observed(&problem, &settings, observer, plcp::Keep::All)?.path
     } else {
         plcp::solve(&problem, &settings)?
     };
+    bar.finish();
     let seconds = start.elapsed().as_secs_f64();
     let mut extra = serde_json::Map::new();
     if let Some(c) = &path.info.certificate {
@@ -294,22 +333,24 @@ fn run(command: Command) -> Result<Report, InputError> {
             lambda_max,
             at,
             threads,
+            quiet,
         } => {
             one_thread(threads);
+            let options = SolveOptions {
+                method,
+                lambda_max,
+                at,
+                certify,
+                exact: matches!(precision, SolvePrecision::Exact),
+                threads,
+                quiet,
+            };
             match precision {
-                SolvePrecision::Float(Precision::F32) => {
-                    solve::<f32>(&file, method, lambda_max, &at, certify, false, threads)
-                }
-                SolvePrecision::Float(Precision::F64) => {
-                    solve::<f64>(&file, method, lambda_max, &at, certify, false, threads)
-                }
-                SolvePrecision::Float(Precision::F128) => {
-                    solve::<faer::fx128>(&file, method, lambda_max, &at, certify, false, threads)
-                }
+                SolvePrecision::Float(Precision::F32) => solve::<f32>(&file, &options),
+                SolvePrecision::Float(Precision::F64) => solve::<f64>(&file, &options),
+                SolvePrecision::Float(Precision::F128) => solve::<faer::fx128>(&file, &options),
                 // the data read as f64, each number then exact
-                SolvePrecision::Exact => {
-                    solve::<f64>(&file, method, lambda_max, &at, certify, true, threads)
-                }
+                SolvePrecision::Exact => solve::<f64>(&file, &options),
             }
         }
         Command::Sequence { file, threads } => {
