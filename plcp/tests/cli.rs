@@ -760,3 +760,23 @@ fn f32_underflow_is_named() {
         &["q entry [1]", "1e-310", "f64"],
     );
 }
+
+#[test]
+fn segments_none_writes_the_same_report_without_segments() {
+    let good = scratch("segments.json", GOOD.as_bytes());
+    let file = good.to_str().unwrap();
+    let mut all = succeeds(&["solve", file, "--at", "0.5,3"]);
+    let mut none = succeeds(&["solve", file, "--at", "0.5,3", "--segments", "none"]);
+    assert_eq!(all["segments"].as_array().map(Vec::len), Some(2));
+    assert_eq!(none["segments"], serde_json::json!([]));
+    for v in [&mut all, &mut none] {
+        let o = v.as_object_mut().unwrap();
+        o.remove("segments");
+        o.remove("timing");
+    }
+    assert_eq!(all, none);
+    fails(
+        &["solve", file, "--segments", "some"],
+        &["--segments", "some"],
+    );
+}

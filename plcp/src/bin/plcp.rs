@@ -1,7 +1,7 @@
 //! The plcp command line.
 //!
 //! ```text
-//! plcp solve FILE.json [--method lemke|wolfe] [--precision f32|f64|f128|exact] [--lambda-max X] [--at L1,L2,...] [--certify] [--quiet]
+//! plcp solve FILE.json [--method lemke|wolfe] [--precision f32|f64|f128|exact] [--lambda-max X] [--at L1,L2,...] [--certify] [--segments all|none] [--quiet]
 //! plcp lcp FILE.dat [--precision f32|f64|f128]
 //! ```
 //!
@@ -77,6 +77,10 @@ enum Command {
         /// No progress line on stderr (it is drawn only when stderr is a terminal).
         #[arg(long, short)]
         quiet: bool,
+        /// Write the segments (all) or an empty "segments" array (none: the
+        /// breakpoints, end and --at values only; a smaller, faster report).
+        #[arg(long, default_value = "all", value_parser = ["all", "none"])]
+        segments: String,
     },
     /// The MPC user's loop: one M, targets g_0..g_K; the LCP at g_0, then the
     /// path from g_(k-1) to g_k (L = 0..1) for each k, started where the last ended.
@@ -160,6 +164,8 @@ struct SolveOptions {
     exact: bool,
     threads: Option<usize>,
     quiet: bool,
+    /// Write every segment (`--segments all`).
+    segments: bool,
 }
 
 fn solve<T: Scalar>(file: &std::path::Path, options: &SolveOptions) -> Result<Report, InputError> {
@@ -171,6 +177,7 @@ fn solve<T: Scalar>(file: &std::path::Path, options: &SolveOptions) -> Result<Re
         exact,
         threads,
         quiet,
+        segments,
     } = *options;
     let bytes = plcp::io::read_bytes(file).map_err(in_file(file))?;
     if plcp::io::sparse_json::is_sparse_json(&bytes) && !exact && !certify {
@@ -200,7 +207,14 @@ fn solve<T: Scalar>(file: &std::path::Path, options: &SolveOptions) -> Result<Re
         if let Some(c) = cert {
             extra.insert("certificate".into(), c.to_json());
         }
-        return Ok(Report::path(problem, traced.path, at, seconds, extra));
+        return Ok(Report::path(
+            problem,
+            traced.path,
+            at,
+            seconds,
+            segments,
+            extra,
+        ));
     }
     // on a terminal, a line per breakpoint (L, pivots, residual) through the
     // path observer: the same path, bit for bit (plcp/tests/observe.rs)
@@ -232,7 +246,7 @@ fn solve<T: Scalar>(file: &std::path::Path, options: &SolveOptions) -> Result<Re
     if let Some(c) = &path.info.certificate {
         extra.insert("certificate".into(), c.to_json());
     }
-    Ok(Report::path(problem, path, at, seconds, extra))
+    Ok(Report::path(problem, path, at, seconds, segments, extra))
 }
 
 /// Writes a report to the output.
@@ -251,11 +265,12 @@ impl Report {
         path: plcp::Path<T>,
         at: &[f64],
         seconds: f64,
+        segments: bool,
         extra: serde_json::Map<String, serde_json::Value>,
     ) -> Self {
         let at = at.to_vec();
         Report::Path(Box::new(move |out: &mut dyn Write| {
-            write_path_json(out, &problem, &path, &at, seconds, &extra)
+            write_path_json(out, &problem, &path, &at, seconds, segments, &extra)
         }))
     }
 
@@ -301,11 +316,13 @@ fn solve_sparse<T: Scalar>(
         keep,
     )?;
     let seconds = start.elapsed().as_secs_f64();
+    // the trace keeps no segment unless --at asks for values: none written
     Ok(Report::path(
         problem,
         run.path,
         at,
         seconds,
+        true,
         serde_json::Map::new(),
     ))
 }
@@ -334,9 +351,11 @@ fn run(command: Command) -> Result<Report, InputError> {
             at,
             threads,
             quiet,
+            segments,
         } => {
             one_thread(threads);
             let options = SolveOptions {
+                segments: segments == "all",
                 method,
                 lambda_max,
                 at,

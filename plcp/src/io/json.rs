@@ -747,6 +747,7 @@ pub fn path_json<T: Scalar>(
         path,
         at,
         solve_seconds,
+        true,
         &serde_json::Map::new(),
     );
     match written.map(|_| String::from_utf8(out)) {
@@ -761,6 +762,9 @@ pub fn path_json<T: Scalar>(
 /// Writes the report of [`path_json`] to `out` as it is built (the path's
 /// columns are read in place, nothing of the size of the output is held),
 /// followed by the fields of `extra` (for example a `certificate`), in order.
+/// With `with_segments` false the `segments` array is written empty (the
+/// breakpoints, the end point and the `at` values are all there; at n = 2000
+/// the segments are 100 MB of the output and most of its writing time).
 /// An error is the writer's.
 pub fn write_path_json<T: Scalar, W: std::io::Write>(
     out: W,
@@ -768,6 +772,7 @@ pub fn write_path_json<T: Scalar, W: std::io::Write>(
     path: &Path<T>,
     at: &[f64],
     solve_seconds: f64,
+    with_segments: bool,
     extra: &serde_json::Map<String, serde_json::Value>,
 ) -> std::io::Result<()> {
     let p = problem.free();
@@ -814,13 +819,17 @@ pub fn write_path_json<T: Scalar, W: std::io::Write>(
             },
         })
         .collect();
+    let mut trace = TraceOut::new(p, path);
+    if !with_segments {
+        trace.segments.segments = &[];
+    }
     let report = PathOut {
         status: path.status.as_str(),
         n: problem.n(),
         free: p,
         lambda0: num(path.lambda0),
         lambda_max: path.lambda_max.and_then(num),
-        trace: TraceOut::new(p, path),
+        trace,
         at,
         residual: res.into(),
         timing: TimingOut {
