@@ -290,13 +290,15 @@ impl<T: Scalar> BlockInverse<T> {
             rows: Vec::new(),
             row_block: vec![None; dim],
             slots: vec![Slot::Identity(0); dim],
-            gy: RefCell::new(Col::zeros(dim)),
-            ar: RefCell::new(Vec::with_capacity(dim)),
-            ym: RefCell::new(Col::zeros(dim)),
-            acc: RefCell::new((Vec::with_capacity(dim), Vec::with_capacity(dim))),
-            rhs2: RefCell::new(Mat::zeros(dim, 2)),
-            prod2: RefCell::new(Mat::zeros(dim, 2)),
-            a: RefCell::new(Col::zeros(dim)),
+            // the buffers are allocated by their first use (a path on a
+            // tiny problem may not need them all)
+            gy: RefCell::new(Col::zeros(0)),
+            ar: RefCell::new(Vec::new()),
+            ym: RefCell::new(Col::zeros(0)),
+            acc: RefCell::new((Vec::new(), Vec::new())),
+            rhs2: RefCell::new(Mat::zeros(0, 0)),
+            prod2: RefCell::new(Mat::zeros(0, 0)),
+            a: RefCell::new(Col::zeros(0)),
         }
     }
 
@@ -320,6 +322,9 @@ impl<T: Scalar> BlockInverse<T> {
     /// over `S^{-1}` when an update is pending).
     fn flush(&self, ar: Option<&[T]>) {
         let k = self.k;
+        if ar.is_some() && self.ym.borrow().nrows() != self.dim {
+            *self.ym.borrow_mut() = Col::zeros(self.dim);
+        }
         let mut sinv = self.sinv.borrow_mut();
         let Some(pending) = self.pending.borrow_mut().take() else {
             if let Some(ar) = ar {
@@ -617,11 +622,15 @@ impl<T: Scalar> BasisFactor<T> for BlockInverse<T> {
         self.block_solve(a);
         let ym = self.ym.borrow();
         let mut rhs = self.rhs2.borrow_mut();
+        let mut prod = self.prod2.borrow_mut();
+        if prod.nrows() != dim {
+            *rhs = Mat::zeros(dim, 2);
+            *prod = Mat::zeros(dim, 2);
+        }
         for b in 0..k {
             rhs[(b, 0)] = ym[b];
             rhs[(b, 1)] = x[self.bpos[b]];
         }
-        let mut prod = self.prod2.borrow_mut();
         matmul_par_into(
             prod.as_mut(),
             self.g.as_ref().subcols(0, k),

@@ -264,9 +264,10 @@ impl<'a, T: Scalar> Engine<'a, T> {
             tie_tol: T::from_f64(settings.tie_tol_eps) * T::eps(),
             residual_owed: false,
             wide_acc: RefCell::new((Vec::new(), Vec::new())),
-            col_buf: Col::zeros(dim),
-            a_buf: Col::zeros(dim),
-            bx_buf: Col::zeros(dim),
+            // allocated by their first use (see `take_buf`)
+            col_buf: Col::zeros(0),
+            a_buf: Col::zeros(0),
+            bx_buf: Col::zeros(0),
         };
         for (r, v) in basis.iter().enumerate() {
             let k = e.var_index(*v);

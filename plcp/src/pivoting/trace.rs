@@ -303,7 +303,10 @@ impl<'a, T: Scalar> Engine<'a, T> {
         let Some(l) = self.row_of(Var::Lambda) else {
             return Ok(());
         };
-        let col = self.column(driver);
-        self.pivot(l, driver, &col, theta)
+        let mut col = Self::take_buf(&mut self.col_buf);
+        self.column_into(driver, &mut col);
+        let done = self.pivot(l, driver, &col, theta);
+        self.col_buf = col;
+        done
     }
 }
