@@ -4,6 +4,7 @@
 
 use crate::scalar::Scalar;
 use faer::linalg::solvers::Solve;
+use faer::reborrow::ReborrowMut;
 use faer::{Col, Mat, MatRef};
 
 /// `A^{-1}` by LU with partial pivoting, with the largest and smallest pivot
@@ -113,18 +114,30 @@ pub fn par_for(entries: usize) -> faer::Par {
     }
 }
 
-/// `A B` with the given parallelism (native types; the others on the calling thread).
-pub fn matmul_par<T: Scalar>(a: MatRef<'_, T>, b: MatRef<'_, T>, par: faer::Par) -> Mat<T> {
+/// `C = A B` with the given parallelism (native types; the others on the
+/// calling thread), written into `c` (`a.nrows() x b.ncols()`): for the block
+/// basis's fused product, into a buffer it keeps.
+pub fn matmul_par_into<T: Scalar>(
+    c: faer::MatMut<'_, T>,
+    a: MatRef<'_, T>,
+    b: MatRef<'_, T>,
+    par: faer::Par,
+) {
     if T::NATIVE {
-        let mut c = Mat::<T>::zeros(a.nrows(), b.ncols());
-        faer::linalg::matmul::matmul(c.as_mut(), faer::Accum::Replace, a, b, T::one(), par);
-        return c;
+        faer::linalg::matmul::matmul(c, faer::Accum::Replace, a, b, T::one(), par);
+        return;
     }
-    matmul_plain(a, b)
+    matmul_plain_into(c, a, b);
 }
 
 fn matmul_plain<T: Scalar>(a: MatRef<'_, T>, b: MatRef<'_, T>) -> Mat<T> {
     let mut c = Mat::<T>::zeros(a.nrows(), b.ncols());
+    matmul_plain_into(c.as_mut(), a, b);
+    c
+}
+
+fn matmul_plain_into<T: Scalar>(mut c: faer::MatMut<'_, T>, a: MatRef<'_, T>, b: MatRef<'_, T>) {
+    c.fill(T::zero());
     for j in 0..b.ncols() {
         for k in 0..a.ncols() {
             let f = b[(k, j)];
@@ -136,7 +149,6 @@ fn matmul_plain<T: Scalar>(a: MatRef<'_, T>, b: MatRef<'_, T>) -> Mat<T> {
             }
         }
     }
-    c
 }
 
 /// `A x`, on the calling thread: the pivoting core calls it once or twice per
@@ -172,9 +184,18 @@ pub fn matvec<T: Scalar>(a: MatRef<'_, T>, x: faer::ColRef<'_, T>) -> Col<T> {
 /// [`matvec`] into `y` (of `a.nrows()` entries; no allocation): the same
 /// kernel, so the same numbers.
 pub fn matvec_into<T: Scalar>(a: MatRef<'_, T>, x: faer::ColRef<'_, T>, y: &mut Col<T>) {
+    matvec_into_mut(a, x, y.as_mut());
+}
+
+/// [`matvec_into`] into a view (the same operations).
+pub fn matvec_into_mut<T: Scalar>(
+    a: MatRef<'_, T>,
+    x: faer::ColRef<'_, T>,
+    mut y: faer::ColMut<'_, T>,
+) {
     if T::NATIVE && a.ncols() > 0 {
         faer::linalg::matmul::matmul(
-            y.as_mat_mut(),
+            y.rb_mut().as_mat_mut(),
             faer::Accum::Replace,
             a,
             x.as_mat(),
@@ -183,7 +204,7 @@ pub fn matvec_into<T: Scalar>(a: MatRef<'_, T>, x: faer::ColRef<'_, T>, y: &mut 
         );
         return;
     }
-    y.as_mut().fill(T::zero());
+    y.fill(T::zero());
     for k in 0..a.ncols() {
         let f = x[k];
         if f != T::zero() {

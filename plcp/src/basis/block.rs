@@ -235,6 +235,18 @@ pub(crate) struct BlockInverse<T: Scalar> {
     slots: Vec<Slot>,
     /// `G y_M` of the last solve (a buffer kept between solves).
     gy: RefCell<Col<T>>,
+    /// `a_R` of the last solve (the right-hand side on the block rows).
+    ar: RefCell<Vec<T>>,
+    /// `y_M = S^{-1} a_R` of the last solve, in its first `k` entries.
+    ym: RefCell<Col<T>>,
+    /// The two accumulators of a pass over `S^{-1}` (see `flush`).
+    acc: RefCell<(Vec<T>, Vec<T>)>,
+    /// The right-hand sides `(y_M, x_M)` of the fused product in
+    /// `solve_and_apply` (first `k` rows) and its result `(G y_M, G x_M)`.
+    rhs2: RefCell<Mat<T>>,
+    prod2: RefCell<Mat<T>>,
+    /// `a_v` of [`BasisFactor::column_into`].
+    a: RefCell<Col<T>>,
 }
 
 impl<T: Scalar> BlockInverse<T> {
@@ -278,7 +290,15 @@ impl<T: Scalar> BlockInverse<T> {
             rows: Vec::new(),
             row_block: vec![None; dim],
             slots: vec![Slot::Identity(0); dim],
-            gy: RefCell::new(Col::zeros(dim)),
+            // the buffers are allocated by their first use (a path on a
+            // tiny problem may not need them all)
+            gy: RefCell::new(Col::zeros(0)),
+            ar: RefCell::new(Vec::new()),
+            ym: RefCell::new(Col::zeros(0)),
+            acc: RefCell::new((Vec::new(), Vec::new())),
+            rhs2: RefCell::new(Mat::zeros(0, 0)),
+            prod2: RefCell::new(Mat::zeros(0, 0)),
+            a: RefCell::new(Col::zeros(0)),
         }
     }
 
@@ -297,15 +317,26 @@ impl<T: Scalar> BlockInverse<T> {
         self.g.resize_with(self.dim, c, |_, _| T::zero());
     }
 
-    /// Applies the pending update to `S^{-1}` and returns `S^{-1} ar` if `ar`
-    /// is given (both in one pass over `S^{-1}` when an update is pending).
-    fn flush(&self, ar: Option<&[T]>) -> Option<Col<T>> {
+    /// Applies the pending update to `S^{-1}` and, if `ar` is given, writes
+    /// `S^{-1} ar` into the first `k` entries of `self.ym` (both in one pass
+    /// over `S^{-1}` when an update is pending).
+    fn flush(&self, ar: Option<&[T]>) {
         let k = self.k;
+        if ar.is_some() && self.ym.borrow().nrows() != self.dim {
+            *self.ym.borrow_mut() = Col::zeros(self.dim);
+        }
         let mut sinv = self.sinv.borrow_mut();
         let Some(pending) = self.pending.borrow_mut().take() else {
-            let ar = ar?;
-            let x = faer::ColRef::from_slice(ar);
-            return Some(matvec(sinv.as_ref().submatrix(0, 0, k, k), x));
+            if let Some(ar) = ar {
+                let x = faer::ColRef::from_slice(ar);
+                let mut ym = self.ym.borrow_mut();
+                matvec_into_mut(
+                    sinv.as_ref().submatrix(0, 0, k, k),
+                    x,
+                    ym.as_mut().subrows_mut(0, k),
+                );
+            }
+            return;
         };
         // two halves of the columns, each with its own accumulator, summed at
         // the end: on two threads when the block is large, with the same
@@ -315,8 +346,16 @@ impl<T: Scalar> BlockInverse<T> {
             .as_mut()
             .submatrix_mut(0, 0, k, k)
             .split_at_col_mut(half);
-        let mut acc_lo = ar.map(|_| vec![T::zero(); k]);
-        let mut acc_hi = ar.map(|_| vec![T::zero(); k]);
+        let mut acc = self.acc.borrow_mut();
+        let (acc_lo, acc_hi) = &mut *acc;
+        for v in [&mut *acc_lo, &mut *acc_hi] {
+            v.clear();
+            v.resize(k, T::zero());
+        }
+        let (acc_lo, acc_hi) = match ar {
+            Some(_) => (Some(&mut acc_lo[..]), Some(&mut acc_hi[..])),
+            None => (None, None),
+        };
         let pass = |sinv, j0, acc| {
             pulp::Arch::new().dispatch(FlushPass {
                 sinv,
@@ -327,36 +366,44 @@ impl<T: Scalar> BlockInverse<T> {
                 acc,
             })
         };
-        match self.par(k * k) {
+        let (acc_lo, acc_hi) = match self.par(k * k) {
             faer::Par::Seq => {
+                let (mut acc_lo, mut acc_hi) = (acc_lo, acc_hi);
                 pass(lo, 0, acc_lo.as_deref_mut());
                 pass(hi, half, acc_hi.as_deref_mut());
+                (acc_lo, acc_hi)
             }
             _ => {
+                let (mut acc_lo, mut acc_hi) = (acc_lo, acc_hi);
                 rayon::join(
                     || pass(lo, 0, acc_lo.as_deref_mut()),
                     || pass(hi, half, acc_hi.as_deref_mut()),
                 );
+                (acc_lo, acc_hi)
+            }
+        };
+        if let (Some(lo), Some(hi)) = (acc_lo, acc_hi) {
+            let mut ym = self.ym.borrow_mut();
+            for b in 0..k {
+                ym[b] = lo[b] + hi[b];
             }
         }
-        let (mut acc, hi) = (acc_lo?, acc_hi?);
-        for (a, b) in acc.iter_mut().zip(&hi) {
-            *a += *b;
-        }
-        Some(Col::from_fn(k, |b| acc[b]))
     }
 
-    /// `y_M = S^{-1} a_R`, with one step of iterative refinement on the block
+    /// `y_M = S^{-1} a_R` into the first `k` entries of `self.ym`, with one
+    /// step of iterative refinement on the block
     /// when asked (`y_M += S^{-1} (a_R - S y_M)`, two products of order `k`).
     ///
     /// That is a whole refinement step of `B y = a`: the covered rows' part
     /// `y_I = a_I - C y_M` satisfies its equations by construction, whatever
     /// `y_M`, so only the block's residual needs correcting, and the pass over
     /// the `dim x k` coupling block comes once, after it.
-    fn block_solve(&self, a: &Col<T>) -> Col<T> {
+    fn block_solve(&self, a: &Col<T>) {
         let k = self.k;
-        let ar: Vec<T> = (0..k).map(|j| a[self.rows[j]]).collect();
-        let mut ym = self.flush(Some(&ar)).expect("a right-hand side was given");
+        let mut ar = self.ar.borrow_mut();
+        ar.clear();
+        ar.extend((0..k).map(|j| a[self.rows[j]]));
+        self.flush(Some(&ar));
         self.refined.set(false);
         if self.refine && k > 0 {
             let idle = self.idle.get();
@@ -365,20 +412,22 @@ impl<T: Scalar> BlockInverse<T> {
                     skip: idle.skip - 1,
                     ..idle
                 });
-                return ym;
+                return;
             }
+            let mut ymc = self.ym.borrow_mut();
+            let mut ym = ymc.as_mut().subrows_mut(0, k);
             let sinv = self.sinv.borrow();
             let sinv = sinv.as_ref().submatrix(0, 0, k, k);
             let r = Col::from_fn(k, |j| ar[j])
                 - matvec(self.s.as_ref().submatrix(0, 0, k, k), ym.as_ref());
             let dy = matvec(sinv, r.as_ref());
-            let big = |v: &Col<T>| (0..k).fold(0.0f64, |m, i| m.max(v[i].to_f64().abs()));
-            let small = big(&dy) <= REFINE_IDLE_EPS * T::eps().to_f64() * big(&ym);
+            let big =
+                |v: faer::ColRef<'_, T>| (0..k).fold(0.0f64, |m, i| m.max(v[i].to_f64().abs()));
+            let small = big(dy.as_ref()) <= REFINE_IDLE_EPS * T::eps().to_f64() * big(ym.as_ref());
             ym += dy;
             self.refined.set(true);
             self.idle.set(idle.after(small));
         }
-        ym
     }
 
     /// Copies block row `a` and block column `b` of `S` from `G` (after an update
@@ -499,20 +548,42 @@ impl<T: Scalar> BasisFactor<T> for BlockInverse<T> {
     }
 
     fn solve(&self, a: &Col<T>) -> Col<T> {
+        let mut out = Col::zeros(self.dim);
+        self.solve_into(a, &mut out);
+        out
+    }
+
+    fn solve_into(&self, a: &Col<T>, out: &mut Col<T>) {
         // solve_parts without its two intermediate columns: `G S^{-1} a_R`
         // into a buffer the basis keeps, `a_i - (G y_M)_i` read per covered
         // row (the same operations as `a - G y_M`)
         let k = self.k;
-        let ym = self.block_solve(a);
+        self.block_solve(a);
+        let ym = self.ym.borrow();
         let mut gy = self.gy.borrow_mut();
         if gy.nrows() != self.dim {
             *gy = Col::zeros(self.dim);
         }
-        matvec_into(self.g.as_ref().subcols(0, k), ym.as_ref(), &mut gy);
-        Col::from_fn(self.dim, |r| match self.slots[r] {
-            Slot::Matrix(b) => ym[b],
-            Slot::Identity(i) => a[i] - gy[i],
-        })
+        matvec_into(
+            self.g.as_ref().subcols(0, k),
+            ym.as_ref().subrows(0, k),
+            &mut gy,
+        );
+        if out.nrows() != self.dim {
+            *out = Col::zeros(self.dim);
+        }
+        for (r, slot) in self.slots.iter().enumerate() {
+            out[r] = match *slot {
+                Slot::Matrix(b) => ym[b],
+                Slot::Identity(i) => a[i] - gy[i],
+            };
+        }
+    }
+
+    fn column_into(&self, m: MatrixRef<'_, T>, d: &Col<T>, p: usize, v: Var, out: &mut Col<T>) {
+        let mut a = self.a.borrow_mut();
+        var_column_into(m, d, p, v, &mut a);
+        self.solve_into(&a, out);
     }
 
     fn unit(&self, k: usize) -> Col<T> {
@@ -523,33 +594,68 @@ impl<T: Scalar> BasisFactor<T> for BlockInverse<T> {
 
     fn solve_and_apply(
         &self,
+        m: MatrixRef<'_, T>,
+        d: &Col<T>,
+        p: usize,
+        basis: &[Var],
+        a: &Col<T>,
+        x: &Col<T>,
+    ) -> (Col<T>, Col<T>) {
+        let (mut sol, mut bx) = (Col::zeros(self.dim), Col::zeros(self.dim));
+        self.solve_and_apply_into(m, d, p, basis, a, x, &mut sol, &mut bx);
+        (sol, bx)
+    }
+
+    fn solve_and_apply_into(
+        &self,
         _m: MatrixRef<'_, T>,
         _d: &Col<T>,
         _p: usize,
         _basis: &[Var],
         a: &Col<T>,
         x: &Col<T>,
-    ) -> (Col<T>, Col<T>) {
+        sol: &mut Col<T>,
+        bx: &mut Col<T>,
+    ) {
         // one pass over the basic columns G for both G S^{-1} a_R and G x_M
-        let k = self.k;
-        let ym = self.block_solve(a);
-        let rhs = Mat::from_fn(k, 2, |b, c| if c == 0 { ym[b] } else { x[self.bpos[b]] });
-        let prod = matmul_par(
+        let (k, dim) = (self.k, self.dim);
+        self.block_solve(a);
+        let ym = self.ym.borrow();
+        let mut rhs = self.rhs2.borrow_mut();
+        let mut prod = self.prod2.borrow_mut();
+        if prod.nrows() != dim {
+            *rhs = Mat::zeros(dim, 2);
+            *prod = Mat::zeros(dim, 2);
+        }
+        for b in 0..k {
+            rhs[(b, 0)] = ym[b];
+            rhs[(b, 1)] = x[self.bpos[b]];
+        }
+        matmul_par_into(
+            prod.as_mut(),
             self.g.as_ref().subcols(0, k),
-            rhs.as_ref(),
-            self.par(self.dim * k),
+            rhs.as_ref().subrows(0, k),
+            self.par(dim * k),
         );
-        let mut bx = Col::from_fn(self.dim, |i| prod[(i, 1)]);
-        let sol = Col::from_fn(self.dim, |r| match self.slots[r] {
-            Slot::Matrix(b) => ym[b],
-            Slot::Identity(i) => a[i] - prod[(i, 0)],
-        });
+        for out in [&mut *sol, &mut *bx] {
+            if out.nrows() != dim {
+                *out = Col::zeros(dim);
+            }
+        }
+        for i in 0..dim {
+            bx[i] = prod[(i, 1)];
+        }
+        for (r, slot) in self.slots.iter().enumerate() {
+            sol[r] = match *slot {
+                Slot::Matrix(b) => ym[b],
+                Slot::Identity(i) => a[i] - prod[(i, 0)],
+            };
+        }
         for (r, slot) in self.slots.iter().enumerate() {
             if let Slot::Identity(i) = slot {
                 bx[*i] += x[r];
             }
         }
-        (sol, bx)
     }
 
     fn refactor_due(&self, since: usize, period: Option<usize>) -> bool {
@@ -634,10 +740,7 @@ impl<T: Scalar> BasisFactor<T> for BlockInverse<T> {
             (Slot::Matrix(b), None) => {
                 // column replacement in S: product form on the block
                 *self.pending.get_mut() = Some(Pending::Column { b, y: ym });
-                let a = var_column(m, d, p, entering);
-                for i in 0..self.dim {
-                    self.g[(i, b)] = a[i];
-                }
+                var_column_slice(m, d, p, entering, column_slice(self.g.as_mut(), b));
                 self.refresh_s(None, Some(b));
             }
             (Slot::Identity(i_out), Some(i_in)) if i_out == i_in => {
@@ -667,10 +770,7 @@ impl<T: Scalar> BasisFactor<T> for BlockInverse<T> {
                     sigma: y[r],
                 });
                 self.reserve(k + 1);
-                let a = var_column(m, d, p, entering);
-                for ii in 0..self.dim {
-                    self.g[(ii, k)] = a[ii];
-                }
+                var_column_slice(m, d, p, entering, column_slice(self.g.as_mut(), k));
                 self.bpos.push(r);
                 self.rows.push(i);
                 self.row_block[i] = Some(k);

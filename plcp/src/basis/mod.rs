@@ -37,7 +37,7 @@ pub(crate) use block::BlockInverse;
 pub(crate) use dense::DenseInverse;
 pub(crate) use sparse::SparseLu;
 
-use crate::linalg::{matmul_par, matvec, matvec_into, par_for};
+use crate::linalg::{matmul_par_into, matvec, matvec_into, matvec_into_mut, par_for};
 use crate::matrix::MatrixRef;
 use crate::path::Var;
 use crate::scalar::Scalar;
@@ -50,20 +50,61 @@ use faer::{Col, Mat, MatMut, MatRef};
 
 /// The column of variable `v` in the system `sum_v a_v v = q` (see [`crate::pivoting`]).
 pub(crate) fn var_column<T: Scalar>(m: MatrixRef<'_, T>, d: &Col<T>, p: usize, v: Var) -> Col<T> {
+    let mut a = Col::zeros(m.nrows());
+    var_column_into(m, d, p, v, &mut a);
+    a
+}
+
+/// [`var_column`] written into `a` (resized to `p + n` if it is not: no
+/// allocation when it is; the pivoting core keeps one such buffer).
+pub(crate) fn var_column_into<T: Scalar>(
+    m: MatrixRef<'_, T>,
+    d: &Col<T>,
+    p: usize,
+    v: Var,
+    a: &mut Col<T>,
+) {
     let dim = m.nrows();
-    let mut a = Col::zeros(dim);
+    if a.nrows() != dim {
+        *a = Col::zeros(dim);
+    }
+    let a = a
+        .as_mut()
+        .try_as_col_major_mut()
+        .expect("an owned column is contiguous")
+        .as_slice_mut();
+    var_column_slice(m, d, p, v, a);
+}
+
+/// [`var_column`] written into a slice of length `p + n`.
+pub(crate) fn var_column_slice<T: Scalar>(
+    m: MatrixRef<'_, T>,
+    d: &Col<T>,
+    p: usize,
+    v: Var,
+    a: &mut [T],
+) {
+    let dim = m.nrows();
     match v {
-        Var::U(j) => m.for_col(j, |i, x| a[i] = -x),
-        Var::Z(j) => m.for_col(p + j, |i, x| a[i] = -x),
-        Var::W(i) => a[p + i] = T::one(),
-        Var::Artificial(k) => a[k] = T::one(),
+        Var::U(j) | Var::Z(j) => {
+            a.fill(T::zero());
+            let col = if let Var::U(_) = v { j } else { p + j };
+            m.for_col(col, |i, x| a[i] = -x);
+        }
+        Var::W(i) => {
+            a.fill(T::zero());
+            a[p + i] = T::one();
+        }
+        Var::Artificial(k) => {
+            a.fill(T::zero());
+            a[k] = T::one();
+        }
         Var::Lambda => {
             for i in 0..dim {
                 a[i] = -d[i];
             }
         }
     }
-    a
 }
 
 /// `B x = sum_r x_r a_{basis[r]}`, by system row.
@@ -122,9 +163,19 @@ pub(crate) trait BasisFactor<T: Scalar> {
         -> Option<f64>;
     /// `B^{-1} a`, indexed by basis position.
     fn solve(&self, a: &Col<T>) -> Col<T>;
+    /// [`Self::solve`] written into `out` (of length `p + n`). The block basis
+    /// overrides it to solve with buffers it keeps: a pivot then allocates
+    /// nothing (faer's aligned allocations were a third of a small path).
+    fn solve_into(&self, a: &Col<T>, out: &mut Col<T>) {
+        *out = self.solve(a);
+    }
     /// `B^{-1} a_v`.
     fn column(&self, m: MatrixRef<'_, T>, d: &Col<T>, p: usize, v: Var) -> Col<T> {
         self.solve(&var_column(m, d, p, v))
+    }
+    /// [`Self::column`] written into `out` (see [`Self::solve_into`]).
+    fn column_into(&self, m: MatrixRef<'_, T>, d: &Col<T>, p: usize, v: Var, out: &mut Col<T>) {
+        *out = self.column(m, d, p, v);
     }
     /// `B^{-1} a` and `B x` together (`x` indexed by basis position, `B x` by
     /// system row). Representations that keep the basic columns override it and
@@ -141,6 +192,21 @@ pub(crate) trait BasisFactor<T: Scalar> {
         x: &Col<T>,
     ) -> (Col<T>, Col<T>) {
         (self.solve(a), apply(m, d, p, basis, x))
+    }
+    /// [`Self::solve_and_apply`] written into `sol` and `bx` (see [`Self::solve_into`]).
+    #[allow(clippy::too_many_arguments)]
+    fn solve_and_apply_into(
+        &self,
+        m: MatrixRef<'_, T>,
+        d: &Col<T>,
+        p: usize,
+        basis: &[Var],
+        a: &Col<T>,
+        x: &Col<T>,
+        sol: &mut Col<T>,
+        bx: &mut Col<T>,
+    ) {
+        (*sol, *bx) = self.solve_and_apply(m, d, p, basis, a, x);
     }
     /// `(B^{-1} a, B^{-1} b)`, consuming `a` and `b`: representations that
     /// can override it to solve both in one sweep, in place (each result as

@@ -27,7 +27,9 @@ mod trace;
 
 pub(crate) use phases::{finish_lean, finish_path, run_path, start_phase};
 
-use crate::basis::{apply, var_column, BasisFactor, BlockInverse, DenseInverse, SparseLu};
+use crate::basis::{
+    apply, var_column, var_column_into, BasisFactor, BlockInverse, DenseInverse, SparseLu,
+};
 use crate::matrix::MatrixRef;
 use crate::path::{Breakpoint, Point, Residual, Segment, Var};
 use crate::scalar::Scalar;
@@ -143,6 +145,12 @@ pub(crate) struct Engine<'a, T: Scalar> {
     /// (two vectors of `p + n` wide values each time were a tenth of the
     /// trace in page faults and zeroing).
     wide_acc: RefCell<WideAccumulators<T>>,
+    /// Buffers of length `p + n` kept between pivots (the entering column,
+    /// the column `a_v` or right-hand side solved for, `B x`): a pivot
+    /// allocates none (see [`crate::basis::BasisFactor::solve_into`]).
+    col_buf: Col<T>,
+    a_buf: Col<T>,
+    bx_buf: Col<T>,
 }
 
 /// The two accumulators of [`Engine::wide_residual_pair`] (values, column).
@@ -256,6 +264,10 @@ impl<'a, T: Scalar> Engine<'a, T> {
             tie_tol: T::from_f64(settings.tie_tol_eps) * T::eps(),
             residual_owed: false,
             wide_acc: RefCell::new((Vec::new(), Vec::new())),
+            // allocated by their first use (see `take_buf`)
+            col_buf: Col::zeros(0),
+            a_buf: Col::zeros(0),
+            bx_buf: Col::zeros(0),
         };
         for (r, v) in basis.iter().enumerate() {
             let k = e.var_index(*v);
@@ -273,6 +285,17 @@ impl<'a, T: Scalar> Engine<'a, T> {
     /// `B^{-1} a_v`: the change of the basic values per unit increase of `v` is its negative.
     pub(crate) fn column(&self, v: Var) -> Col<T> {
         self.factor.column(self.m, &self.d, self.p, v)
+    }
+
+    /// [`Self::column`] into `out` (no allocation with the block basis).
+    pub(crate) fn column_into(&self, v: Var, out: &mut Col<T>) {
+        self.factor.column_into(self.m, &self.d, self.p, v, out);
+    }
+
+    /// The kept buffer `buf` (one of the engine's), taken out to be written
+    /// while the engine is borrowed; put back with `self.<buf> = it`.
+    fn take_buf(buf: &mut Col<T>) -> Col<T> {
+        core::mem::replace(buf, Col::zeros(0))
     }
 
     /// Rebuilds the factorisation and the basic values (drift correction).
@@ -315,8 +338,11 @@ impl<'a, T: Scalar> Engine<'a, T> {
     /// The basic values `x = B^{-1} (q + L d)` from the current factorisation,
     /// tiny negatives of sign-constrained basics (drift) snapped to zero.
     fn values_from_factor(&mut self) {
-        let rhs = self.rhs();
-        let xnew = self.factor.solve(&rhs);
+        let mut rhs = Self::take_buf(&mut self.a_buf);
+        self.rhs_into(&mut rhs);
+        let mut xnew = Self::take_buf(&mut self.col_buf);
+        self.factor.solve_into(&rhs, &mut xnew);
+        self.a_buf = rhs;
         // snap tiny negatives of sign-constrained basics (drift) to zero
         let scale = self.xscale();
         for r in 0..self.dim {
@@ -329,6 +355,7 @@ impl<'a, T: Scalar> Engine<'a, T> {
             }
             self.x[r] = v;
         }
+        self.col_buf = xnew;
         if let Some(l) = self.row_of(Var::Lambda) {
             // L stays the path's exact parameter; the recomputed value measures drift
             self.x[l] = self.lambda;
@@ -385,6 +412,20 @@ impl<'a, T: Scalar> Engine<'a, T> {
             };
             bad.then(|| format!("{v} = {:e} at L = {:e}", x.to_f64(), self.lambda.to_f64()))
         })
+    }
+
+    /// [`Self::rhs`] into `out` (resized to `p + n` if it is not).
+    fn rhs_into(&self, out: &mut Col<T>) {
+        if out.nrows() != self.dim {
+            *out = Col::zeros(self.dim);
+        }
+        if self.row_of(Var::Lambda).is_some() {
+            out.as_mut().copy_from(self.q.as_ref());
+        } else {
+            for i in 0..self.dim {
+                out[i] = self.q[i] + self.lambda * self.d[i];
+            }
+        }
     }
 
     /// `q + L d` when `L` is nonbasic, `q` when it is basic.

@@ -51,20 +51,35 @@ impl<'a, T: Scalar> Engine<'a, T> {
         }
         let xnorm = self.xscale();
         let mut best: Option<T> = None;
-        let mut cands: Vec<(usize, T)> = Vec::new();
+        // the candidates (rows and ratios), recomputed in the second pass
+        // rather than collected: no allocation unless several rows tie
+        let ratio = |r: usize| {
+            (is_comp(self.basis[r]) && col[r] > ptol).then(|| self.x[r].max(T::zero()) / col[r])
+        };
+        let mut first_cand = None;
         for r in 0..self.dim {
-            if is_comp(self.basis[r]) && col[r] > ptol {
-                let ratio = self.x[r].max(T::zero()) / col[r];
-                cands.push((r, ratio));
+            if let Some(ratio) = ratio(r) {
+                first_cand.get_or_insert(r);
                 best = Some(best.map_or(ratio, |b| b.min(ratio)));
             }
         }
         let tmin = best?;
-        let mut tied: Vec<usize> = cands
-            .iter()
-            .filter(|(r, t)| *t - tmin <= self.tie_tol * (tmin.abs() + xnorm / col[*r]))
-            .map(|(r, _)| *r)
-            .collect();
+        let is_tied = |r: usize| {
+            ratio(r).is_some_and(|t| t - tmin <= self.tie_tol * (tmin.abs() + xnorm / col[r]))
+        };
+        let (mut n_tied, mut first) = (0usize, None);
+        for r in 0..self.dim {
+            if is_tied(r) {
+                n_tied += 1;
+                first.get_or_insert(r);
+            }
+        }
+        if n_tied <= 1 {
+            let r = first.or(first_cand).expect("a candidate");
+            let theta = self.x[r].max(T::zero()) / col[r];
+            return Some((r, theta));
+        }
+        let mut tied: Vec<usize> = (0..self.dim).filter(|&r| is_tied(r)).collect();
         if tied.len() > 1 {
             // lexicographic rule: compare rows of B^{-1} / col_r, complementary columns first
             let order: Vec<usize> = (self.p..self.dim).chain(0..self.p).collect();
@@ -125,7 +140,7 @@ impl<'a, T: Scalar> Engine<'a, T> {
                     .unwrap_or(core::cmp::Ordering::Equal)
             });
         }
-        let r = *tied.first().unwrap_or(&cands[0].0);
+        let r = *tied.first().unwrap_or(&first_cand.expect("a candidate"));
         let theta = self.x[r].max(T::zero()) / col[r];
         Some((r, theta))
     }

@@ -47,11 +47,11 @@ impl<'a, T: Scalar> Engine<'a, T> {
     /// ([`Scalar::Wide`]) and refinement goes on while the correction exceeds
     /// the rounding of `x` (see [`Self::refine_values_wide`]). Returns the
     /// residuals after refinement.
-    pub(super) fn refine_values(&mut self, mut bx: Col<T>) -> Residual {
+    pub(super) fn refine_values(&mut self, bx: &mut Col<T>) -> Residual {
         if self.refine_wide {
             return self.refine_values_wide(None);
         }
-        let mut res = self.residual_of(&bx);
+        let mut res = self.residual_of(bx);
         let tol = self.settings.refine_tol_eps * T::eps().to_f64();
         let l = self.row_of(Var::Lambda);
         for _ in 0..2 {
@@ -76,7 +76,7 @@ impl<'a, T: Scalar> Engine<'a, T> {
                 break;
             }
             self.x = xn;
-            bx = bxn;
+            *bx = bxn;
             res = resn;
         }
         res

@@ -54,13 +54,16 @@ impl<'a, T: Scalar> Engine<'a, T> {
             // the entering column's wide residual, when a pass for the values computed it
             // and its correction (solved with the values' first correction)
             let mut col_correction: Option<Col<T>> = None;
-            let mut col = match rec.as_deref_mut() {
+            // the entering column, in the engine's buffer (put back at the
+            // end of the step)
+            let mut col = Self::take_buf(&mut self.col_buf);
+            match rec.as_deref_mut() {
                 Some(rec) if self.residual_owed => {
-                    let (col, res) = if self.refine_wide {
+                    let res = if self.refine_wide {
                         // the wide residuals recompute B x: no working-precision
                         // product; the first residual of the values and the
                         // entering column's share one pass over the basic columns
-                        let col = self.column(driver);
+                        self.column_into(driver, &mut col);
                         if refine_here {
                             self.factor.set_refine(false);
                         }
@@ -74,21 +77,28 @@ impl<'a, T: Scalar> Engine<'a, T> {
                             col_correction = Some(dc);
                             Some(dx)
                         };
-                        (col, self.refine_values_wide(first))
+                        self.refine_values_wide(first)
                     } else {
-                        let a = var_column(self.m, &self.d, self.p, driver);
-                        let (col, bx) = self.factor.solve_and_apply(
+                        let mut a = Self::take_buf(&mut self.a_buf);
+                        let mut bx = Self::take_buf(&mut self.bx_buf);
+                        var_column_into(self.m, &self.d, self.p, driver, &mut a);
+                        self.factor.solve_and_apply_into(
                             self.m,
                             &self.d,
                             self.p,
                             &self.basis,
                             &a,
                             &self.x,
+                            &mut col,
+                            &mut bx,
                         );
+                        self.a_buf = a;
                         if refine_here {
                             self.factor.set_refine(false);
                         }
-                        (col, self.refine_values(bx))
+                        let res = self.refine_values(&mut bx);
+                        self.bx_buf = bx;
+                        res
                     };
                     if let Some(b) = rec.breakpoints.last_mut() {
                         b.residual = res;
@@ -112,10 +122,9 @@ impl<'a, T: Scalar> Engine<'a, T> {
                             self.max_cond
                         ));
                     }
-                    col
                 }
-                _ => self.column(driver),
-            };
+                _ => self.column_into(driver, &mut col),
+            }
             if refine_here {
                 self.factor.set_refine(false);
             }
@@ -175,6 +184,7 @@ impl<'a, T: Scalar> Engine<'a, T> {
                     if let Some(l) = self.row_of(Var::Lambda) {
                         self.x[l] = end;
                     }
+                    self.col_buf = col;
                     return TraceEnd::Reached {
                         driver,
                         theta: theta_end,
@@ -269,6 +279,7 @@ impl<'a, T: Scalar> Engine<'a, T> {
                     return TraceEnd::Stalled("internal: a free variable blocked".into())
                 }
             }
+            self.col_buf = col;
         }
     }
 
@@ -292,7 +303,10 @@ impl<'a, T: Scalar> Engine<'a, T> {
         let Some(l) = self.row_of(Var::Lambda) else {
             return Ok(());
         };
-        let col = self.column(driver);
-        self.pivot(l, driver, &col, theta)
+        let mut col = Self::take_buf(&mut self.col_buf);
+        self.column_into(driver, &mut col);
+        let done = self.pivot(l, driver, &col, theta);
+        self.col_buf = col;
+        done
     }
 }
