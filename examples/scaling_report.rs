@@ -12,6 +12,7 @@
 //! ```text
 //! cargo build --release -p frames --bin frames && cargo build --release --example obstacle
 //! cargo run --release -q --example scaling_report -- --cantilever 100,1000,2000 --obstacle 32:4,100:1,316:0.8
+//! cargo run --release -q --example scaling_report -- --trace 10000
 //! ```
 //!
 //! Each case runs once (no repetition: these are minutes long at the top end).
@@ -33,12 +34,14 @@ fn cantilever_toml(n: usize) -> String {
     )
 }
 
-/// Runs `cmd` under `/usr/bin/time -f "%e %M"`, stdout to `out`; returns
-/// (seconds, peak resident MB, output bytes, the first line of the output).
+/// Runs `cmd` under `/usr/bin/time -f "%e %M %U"`, stdout to `out`; returns
+/// (seconds, peak resident MB, output bytes, the first line of the output)
+/// and prints the user time and the load average to stderr (wall time on a
+/// shared machine is several times the CPU time).
 fn measure(cmd: &[&str], out: &Path) -> Result<(f64, f64, u64, String), String> {
     let times = out.with_extension("time");
     let status = Command::new("/usr/bin/time")
-        .args(["-f", "%e %M", "-o", times.to_str().unwrap()])
+        .args(["-f", "%e %M %U", "-o", times.to_str().unwrap()])
         .args(cmd)
         .stdout(std::fs::File::create(out).map_err(|e| e.to_string())?)
         .status()
@@ -50,6 +53,16 @@ fn measure(cmd: &[&str], out: &Path) -> Result<(f64, f64, u64, String), String> 
     let mut it = t.split_whitespace();
     let secs: f64 = it.next().and_then(|s| s.parse().ok()).unwrap_or(f64::NAN);
     let kb: f64 = it.next().and_then(|s| s.parse().ok()).unwrap_or(f64::NAN);
+    let user: f64 = it.next().and_then(|s| s.parse().ok()).unwrap_or(f64::NAN);
+    let load = std::fs::read_to_string("/proc/loadavg").unwrap_or_default();
+    eprintln!(
+        "{}: {secs:.2} s wall, {user:.2} s user, load average {}",
+        cmd.join(" "),
+        load.split_whitespace()
+            .take(3)
+            .collect::<Vec<_>>()
+            .join(" ")
+    );
     let bytes = std::fs::metadata(out).map(|m| m.len()).unwrap_or(0);
     let text = std::fs::read_to_string(out).unwrap_or_default();
     Ok((
