@@ -12,9 +12,18 @@
 //! ```text
 //! cargo build --release -p frames --bin frames && cargo build --release --example obstacle
 //! cargo run --release -q --example scaling_report -- --cantilever 100,1000,2000 --obstacle 32:4,100:1,316:0.8
+//! cargo run --release -q --example scaling_report -- --trace 10000
 //! ```
 //!
 //! Each case runs once (no repetition: these are minutes long at the top end).
+//!
+//! `--trace 10000` traces the cantilever's system (9) alone (plcp's sparse
+//! long form in `f64`, `Keep::Nothing`, segments dropped as they come; no
+//! hinge reading, no report), each size in a child process under
+//! `/usr/bin/time`: whether `f64` traces it, its pivots and condition, and
+//! the `Lambda` at which the hinge front reaches `x = 1/4, 1/2, 3/4` (the
+//! first pivot that lets a yield mode there accelerate) beside the
+//! continuum's `3 / (1 - x)` (`examples/cantilever_convergence.rs`).
 
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -25,12 +34,14 @@ fn cantilever_toml(n: usize) -> String {
     )
 }
 
-/// Runs `cmd` under `/usr/bin/time -f "%e %M"`, stdout to `out`; returns
-/// (seconds, peak resident MB, output bytes, the first line of the output).
+/// Runs `cmd` under `/usr/bin/time -f "%e %M %U"`, stdout to `out`; returns
+/// (seconds, peak resident MB, output bytes, the first line of the output)
+/// and prints the user time and the load average to stderr (wall time on a
+/// shared machine is several times the CPU time).
 fn measure(cmd: &[&str], out: &Path) -> Result<(f64, f64, u64, String), String> {
     let times = out.with_extension("time");
     let status = Command::new("/usr/bin/time")
-        .args(["-f", "%e %M", "-o", times.to_str().unwrap()])
+        .args(["-f", "%e %M %U", "-o", times.to_str().unwrap()])
         .args(cmd)
         .stdout(std::fs::File::create(out).map_err(|e| e.to_string())?)
         .status()
@@ -42,6 +53,16 @@ fn measure(cmd: &[&str], out: &Path) -> Result<(f64, f64, u64, String), String> 
     let mut it = t.split_whitespace();
     let secs: f64 = it.next().and_then(|s| s.parse().ok()).unwrap_or(f64::NAN);
     let kb: f64 = it.next().and_then(|s| s.parse().ok()).unwrap_or(f64::NAN);
+    let user: f64 = it.next().and_then(|s| s.parse().ok()).unwrap_or(f64::NAN);
+    let load = std::fs::read_to_string("/proc/loadavg").unwrap_or_default();
+    eprintln!(
+        "{}: {secs:.2} s wall, {user:.2} s user, load average {}",
+        cmd.join(" "),
+        load.split_whitespace()
+            .take(3)
+            .collect::<Vec<_>>()
+            .join(" ")
+    );
     let bytes = std::fs::metadata(out).map(|m| m.len()).unwrap_or(0);
     let text = std::fs::read_to_string(out).unwrap_or_default();
     Ok((
@@ -61,8 +82,97 @@ fn list<T: std::str::FromStr>(args: &[String], flag: &str, default: &str) -> Vec
     v.split(',').filter_map(|s| s.parse().ok()).collect()
 }
 
+/// One trace of the `n`-element cantilever's system (9), nothing stored.
+fn trace_one(n: usize) -> Result<(), String> {
+    use plcp::{BasisKind, Control, Keep, Method, Settings, Var};
+    let scene = frames::Scene::from_toml(&cantilever_toml(n), "cantilever.toml")
+        .map_err(|e| e.to_string())?;
+    let t0 = std::time::Instant::now();
+    let system = frames::System::assemble(&scene.frame);
+    let problem = system
+        .plcp_sparse::<f64>(Some(12.0))
+        .map_err(|e| e.to_string())?;
+    let assembled = t0.elapsed().as_secs_f64();
+    let mut settings = Settings::<f64>::with_method(Method::Wolfe);
+    settings.basis = BasisKind::Sparse;
+    // the mode (index into z) whose section sits nearest x = 1/4, 1/2, 3/4
+    let xs = [0.25, 0.5, 0.75];
+    let near: Vec<usize> = xs
+        .iter()
+        .map(|&x| {
+            (0..system.modes.len())
+                .min_by(|&a, &b| {
+                    let d = |k: usize| {
+                        let node = system.sections[system.modes[k].section].node;
+                        (scene.frame.nodes[node].x - x).abs()
+                    };
+                    d(a).total_cmp(&d(b))
+                })
+                .unwrap_or(0)
+        })
+        .collect();
+    let first = std::rc::Rc::new(std::cell::RefCell::new([f64::NAN; 3]));
+    let seen = first.clone();
+    let observer = move |_: &plcp::Segment<f64>, p: &plcp::Progress<'_, f64>| {
+        if let Some(b) = p.breakpoint {
+            if let Var::Z(k) = b.entering {
+                for (f, &m) in seen.borrow_mut().iter_mut().zip(&near) {
+                    if k == m && f.is_nan() {
+                        *f = b.lambda;
+                    }
+                }
+            }
+        }
+        Control::Continue
+    };
+    let run = plcp::solve_observed(&problem, &settings, observer, Keep::Nothing)
+        .map_err(|e| e.to_string())?;
+    let secs = t0.elapsed().as_secs_f64();
+    let info = &run.path.info;
+    println!(
+        "n = {n}: {} unknowns, status {}, {} pivots, {} refactorisations, lambda reached {}, worst residual {:.1e}, max condition {:.1e}, path {} bytes, assembled in {assembled:.2} s, traced in {:.2} s",
+        problem.dim(),
+        run.path.status.as_str(),
+        info.pivots,
+        info.refactorisations,
+        run.path.lambda_reached,
+        info.residual.worst(),
+        info.max_condition,
+        info.path_bytes,
+        secs - assembled
+    );
+    for (x, l) in xs.iter().zip(first.borrow().iter()) {
+        println!(
+            "  hinge front at x = {x}: Lambda = {l:.10} (continuum 3 / (1 - x) = {:.10})",
+            3.0 / (1.0 - x)
+        );
+    }
+    Ok(())
+}
+
 fn main() -> Result<(), String> {
     let args: Vec<String> = std::env::args().collect();
+    if let Some(i) = args.iter().position(|a| a == "--trace-one") {
+        let n: usize = args
+            .get(i + 1)
+            .and_then(|s| s.parse().ok())
+            .ok_or("--trace-one N")?;
+        return trace_one(n);
+    }
+    if args.iter().any(|a| a == "--trace") {
+        let me = std::env::current_exe().map_err(|e| e.to_string())?;
+        let dir = std::env::temp_dir().join("plcp-scaling-report");
+        std::fs::create_dir_all(&dir).map_err(|e| e.to_string())?;
+        for n in list::<usize>(&args, "--trace", "10000") {
+            let out = dir.join(format!("trace{n}.txt"));
+            let (s, mb, _, _) =
+                measure(&[me.to_str().unwrap(), "--trace-one", &n.to_string()], &out)?;
+            let text = std::fs::read_to_string(&out).map_err(|e| e.to_string())?;
+            print!("{text}");
+            println!("  wall {s:.2} s, peak resident {mb:.0} MB");
+        }
+        return Ok(());
+    }
     let cant: Vec<usize> = list(&args, "--cantilever", "100,1000,2000");
     let obst: Vec<String> = list(&args, "--obstacle", "32:4,100:1,316:0.8");
     let target = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("target/release");

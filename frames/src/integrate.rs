@@ -136,10 +136,25 @@ pub fn integrate(pieces: &[AffinePiece], history: &History, times: &[f64]) -> Mo
                 pieces.len() - 1
             })
     };
+    // the state is written straight into the requested times' slots (a copy
+    // at every knot, kept in a map, held two more copies of the series)
+    let mut slots: std::collections::HashMap<u64, Vec<usize>> = std::collections::HashMap::new();
+    for (k, t) in times.iter().enumerate() {
+        slots.entry(t.to_bits()).or_default().push(k);
+    }
+    let mut displacement: Vec<Vec<f64>> = vec![Vec::new(); times.len()];
+    let mut velocity: Vec<Vec<f64>> = vec![Vec::new(); times.len()];
     let mut q = vec![0.0; nq];
     let mut v = vec![0.0; nq];
-    let mut at = std::collections::HashMap::new();
-    at.insert(0.0f64.to_bits(), (q.clone(), v.clone()));
+    let mut record = |t: f64, q: &[f64], v: &[f64]| {
+        if let Some(ks) = slots.get(&t.to_bits()) {
+            for &k in ks {
+                displacement[k] = q.to_vec();
+                velocity[k] = v.to_vec();
+            }
+        }
+    };
+    record(0.0, &q, &v);
     for w in knots.windows(2) {
         let (ta, tb) = (w[0], w[1]);
         let tau = tb - ta;
@@ -153,17 +168,14 @@ pub fn integrate(pieces: &[AffinePiece], history: &History, times: &[f64]) -> Mo
             q[j] += v[j] * tau + 0.5 * b * tau * tau + s * i2;
             v[j] += b * tau + s * i1;
         }
-        at.insert(tb.to_bits(), (q.clone(), v.clone()));
+        record(tb, &q, &v);
     }
-    let mut displacement = Vec::with_capacity(times.len());
-    let mut velocity = Vec::with_capacity(times.len());
-    for t in times {
-        let (qq, vv) = at
-            .get(&t.to_bits())
-            .cloned()
-            .unwrap_or_else(|| (vec![0.0; nq], vec![0.0; nq]));
-        displacement.push(qq);
-        velocity.push(vv);
+    // a time no knot reached (none: every time is a knot) reads as rest
+    for (d, vv) in displacement.iter_mut().zip(velocity.iter_mut()) {
+        if d.len() != nq {
+            *d = vec![0.0; nq];
+            *vv = vec![0.0; nq];
+        }
     }
     Motion {
         times: times.to_vec(),
@@ -214,6 +226,31 @@ mod tests {
             }
         }
         (q, v)
+    }
+
+    /// Times in any order, repeated, and zero: each gets the state of its own
+    /// time, the same bits as the same time asked alone.
+    #[test]
+    fn times_in_any_order_get_their_own_state() {
+        let pieces = vec![AffinePiece {
+            lambda_from: 0.0,
+            lambda_to: f64::INFINITY,
+            base: vec![-1.0, 0.5],
+            slope: vec![2.0, 0.25],
+        }];
+        let h = History::Ramp { rate: 1.5 };
+        let times = [1.3, 0.5, 1.3, 0.0, 2.0];
+        let m = integrate(&pieces, &h, &times);
+        assert_eq!(m.displacement[0], m.displacement[2]);
+        assert_eq!(m.velocity[0], m.velocity[2]);
+        assert_eq!(m.displacement[3], vec![0.0, 0.0]);
+        assert_eq!(m.velocity[3], vec![0.0, 0.0]);
+        let sorted = integrate(&pieces, &h, &[0.0, 0.5, 1.3, 2.0]);
+        for (k, j) in [(0, 2), (1, 1), (3, 0), (4, 3)] {
+            assert_eq!(m.displacement[k], sorted.displacement[j], "{k}");
+            assert_eq!(m.velocity[k], sorted.velocity[j], "{k}");
+        }
+        assert!(m.displacement[4][0] != 0.0);
     }
 
     #[test]

@@ -78,7 +78,7 @@ pub mod timestep;
 pub mod yield_surface;
 
 pub use analysis::{Analysis, AnalysisOptions};
-pub use assemble::System;
+pub use assemble::{SparseBlock, System};
 pub use error::FramesError;
 pub use model::{Frame, History, Model, ReadOptions, Scene};
 pub use solve::SolveOptions;

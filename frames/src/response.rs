@@ -303,21 +303,26 @@ pub fn build(
             }
         })
         .collect();
-    let motion: Motion = integrate(&affine_pieces, history, times);
+    // each coordinate series is freed as it is spread over the nodes
+    let Motion {
+        times: motion_times,
+        lambda,
+        displacement,
+        velocity,
+    } = integrate(&affine_pieces, history, times);
+    drop(affine_pieces);
     let time = TimeResponse {
         history: history.clone(),
         method: METHOD,
-        times: motion.times.clone(),
-        lambda: motion.lambda.clone(),
-        displacement: motion
-            .displacement
-            .iter()
-            .map(|q| to_nodes(frame, system, q))
+        times: motion_times,
+        lambda,
+        displacement: displacement
+            .into_iter()
+            .map(|q| to_nodes(frame, system, &q))
             .collect(),
-        velocity: motion
-            .velocity
-            .iter()
-            .map(|q| to_nodes(frame, system, q))
+        velocity: velocity
+            .into_iter()
+            .map(|q| to_nodes(frame, system, &q))
             .collect(),
     };
     Response {
