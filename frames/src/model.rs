@@ -195,8 +195,14 @@ pub struct Interaction {
     pub curve: Curve,
     /// The plastic capacity of the second force alone (`Tp` or `Np`).
     pub capacity: f64,
-    /// The number of facets of the inscribed polygon (a multiple of 4).
+    /// The number of facets of the inscribed polygon (a multiple of 4); for
+    /// the space polyhedron (polytope) its number of longitudes.
     pub facets: usize,
+    /// General space model only: the plastic axial force `Np` of a member
+    /// with `plastic_axial`, whose sections then yield on the
+    /// bending-torsion-axial polytope ([`crate::yield_surface::Polytope`]);
+    /// `None` elsewhere (the axial force of a planar member is the `capacity`).
+    pub axial: Option<f64>,
 }
 
 /// A straight rigid-plastic beam element between two nodes, with a critical
@@ -702,6 +708,10 @@ impl Ctx<'_> {
                 curve: rule.curve,
                 capacity: self.positive(v, format!("{table} {}", rule.key))?,
                 facets: facets.unwrap_or(default_facets),
+                axial: match rule.third_key.and_then(|key| k.capacity(key)) {
+                    Some(np) => Some(self.positive(np, format!("{table} plastic_axial"))?),
+                    None => None,
+                },
             }),
             None if rule.required => {
                 return self.err(
@@ -717,6 +727,16 @@ impl Ctx<'_> {
                 None
             }
         };
+        if let Some(it) = interaction.filter(|it| it.axial.is_some() && it.facets > 64) {
+            return self.err(
+                k.facets.map_or(id.span(), |f| f.span()),
+                format!("{table} facets"),
+                format!(
+                    "with plastic_axial the general space model's polytope takes at most 64 longitudes (about k^3 / 2 facets per section), got {}",
+                    it.facets
+                ),
+            );
+        }
         Ok((mp, interaction, mu))
     }
 
