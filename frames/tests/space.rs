@@ -1175,3 +1175,88 @@ fn plastic_axial_written_in_the_plane_agrees_with_the_planar_model() {
         assert!((x - y).abs() <= 1e-9 * x.abs().max(1.0), "{x} vs {y}");
     }
 }
+
+/// The plots of a space scene show what a pipe engineer reads: the bending
+/// magnitude `sqrt(M2^2 + M3^2)` (within `Mp`) and the torque (within `Tp`)
+/// per section, in a projection the plot names (automatic: isometric for
+/// the 3D run; chosen: an elevation).
+#[test]
+fn space_plots_show_bending_magnitude_and_torque_in_a_named_projection() {
+    use frames::plot::{write_all_with, View};
+    let a = run(&pipe_whip("space-restraint.toml"), "space-restraint.toml");
+    assert_eq!(a.system.model, frames::model::Model::Space);
+    let dir = std::env::temp_dir().join(format!("frames-space-plots-{}", std::process::id()));
+    write_all_with(&a, &dir, View::Auto).unwrap();
+    let csv = std::fs::read_to_string(dir.join("moments.csv")).unwrap();
+    let mut lines = csv.lines();
+    assert_eq!(
+        lines.next().unwrap(),
+        "lambda,member,node,end,s,moment,m2,bending,torque"
+    );
+    let tp = 0.9068996821171089;
+    let (mut rows, mut torqued) = (0, 0);
+    for l in lines {
+        let v: Vec<f64> = l.split(',').skip(5).map(|x| x.parse().unwrap()).collect();
+        let (m3, m2, b, t) = (v[0], v[1], v[2], v[3]);
+        assert_eq!(b, m2.hypot(m3), "{l}");
+        assert!(b <= 1.0 + 1e-9 && t.abs() <= tp * (1.0 + 1e-9), "{l}");
+        rows += 1;
+        torqued += usize::from(t.abs() > 1e-3);
+    }
+    assert!(
+        rows > 0 && torqued > 0,
+        "{rows} rows, {torqued} with a torque"
+    );
+    // sampled: 77 breakpoints, 12 diagrams, and the plot says so
+    let lambdas: std::collections::BTreeSet<&str> = csv
+        .lines()
+        .skip(1)
+        .map(|l| l.split(',').next().unwrap())
+        .collect();
+    assert_eq!(
+        lambdas.len(),
+        frames::plot::MAX_CURVES.min(a.reading.breakpoints.len())
+    );
+    let svg = std::fs::read_to_string(dir.join("moments.svg")).unwrap();
+    assert!(svg.contains("sqrt(M2^2 + M3^2)") && svg.contains("Torque"));
+    if a.reading.breakpoints.len() > frames::plot::MAX_CURVES {
+        assert!(svg.contains("sampled evenly"));
+    }
+    let geo = std::fs::read_to_string(dir.join("geometry.svg")).unwrap();
+    assert!(geo.contains("isometric view from (1, 1, 1)"));
+    assert!(std::fs::read_to_string(dir.join("geometry.csv"))
+        .unwrap()
+        .starts_with("order,lambda,node,x,y,z,hinge"));
+    write_all_with(&a, &dir, View::Xz).unwrap();
+    let geo = std::fs::read_to_string(dir.join("geometry.svg")).unwrap();
+    assert!(geo.contains("elevation x-z"));
+    assert!(View::parse("iso").is_ok() && View::parse("front").is_err());
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// Plots stay readable with many hinges: a 40-element cantilever (31
+/// breakpoints) draws 12 moment diagrams and says so, the geometry's legend
+/// numbers the first 20 hinges and says so.
+#[test]
+fn plots_sample_and_say_so() {
+    let src = "title = \"uniform cantilever\"\n[[node]]\nid = \"A\"\nx = 0.0\ny = 0.0\n[[node]]\nid = \"B\"\nx = 1.0\ny = 0.0\n[[member]]\nid = \"AB\"\nfrom = \"A\"\nto = \"B\"\nplastic_moment = 1.0\nmass_per_length = 1.0\nelements = 40\n[[support]]\nnode = \"A\"\nfix = [\"x\", \"y\", \"rz\"]\n[[load]]\nnode = \"B\"\nfy = 1.0\n";
+    let scene = Scene::from_toml(src, "c.toml").unwrap();
+    let mut options = AnalysisOptions::default();
+    options.solve.lambda_max = Some(12.0);
+    let a = Analysis::run(scene, &options).unwrap();
+    let n = a.reading.breakpoints.len();
+    assert!(n > 20, "{n}");
+    let dir = std::env::temp_dir().join(format!("frames-sampled-plots-{}", std::process::id()));
+    frames::plot::write_all(&a, &dir).unwrap();
+    let svg = std::fs::read_to_string(dir.join("moments.svg")).unwrap();
+    assert!(svg.contains(&format!("12 of {n} critical Lambda values, sampled evenly")));
+    assert_eq!(svg.matches("Lambda = ").count(), 12);
+    let geo = std::fs::read_to_string(dir.join("geometry.svg")).unwrap();
+    let hinges = a.reading.hinges.len();
+    assert!(
+        geo.contains(&format!("the first 20 of {hinges}")),
+        "{hinges}"
+    );
+    assert_eq!(geo.matches("at Lambda = ").count(), 20);
+    let _ = std::fs::remove_dir_all(&dir);
+}
