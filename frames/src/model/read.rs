@@ -375,6 +375,10 @@ impl<'a> Reader<'a> {
     }
 
     /// The `[[arc]]`s.
+    ///
+    /// About 220 lines, over the house limit of 150: the arc's geometry
+    /// (plane, points, chords) and its member are read in one loop; not
+    /// split yet (issue 16).
     pub(super) fn arcs(&mut self) -> Result<(), FramesError> {
         let (space, default_facets) = (self.space, self.default_facets);
         let Reader {
