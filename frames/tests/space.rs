@@ -535,7 +535,8 @@ fn hinge_lambdas(a: &Analysis) -> Vec<f64> {
 /// cross-sections at zero out-of-plane (in-plane) forces are exactly the
 /// planar model's `|m| <= Mp` (the grillage's polygon of `k` facets), and
 /// zero out-of-plane motion is a solution of the space system. Scenes with
-/// `plastic_axial` are left out (the general model has no axial yield yet).
+/// `plastic_axial` are left out here (their own test:
+/// `plastic_axial_written_in_the_plane_agrees_with_the_planar_model`).
 #[test]
 fn general_assembly_of_planar_scenes_gives_the_reduced_breakpoints() {
     let mut count = 0;
