@@ -69,7 +69,7 @@
 use crate::kernel::null_space;
 use crate::kind::ElementRow;
 use crate::model::{Component, Frame, Model};
-use crate::yield_surface::{Polygon, Polyhedron};
+use crate::yield_surface::{Polygon, Polyhedron, Polytope};
 use faer::{Col, Mat};
 use plcp::{Plcp, PlcpError, Scalar};
 
@@ -153,6 +153,10 @@ pub struct FacetMode {
     /// A facet of the space polyhedron ([`crate::yield_surface::Polyhedron`]):
     /// its unit normal `(n_m2, n_m3, n_t)` in `(M2/Mp, M3/Mp, T/Tp)`.
     pub normal3: Option<[f64; 3]>,
+    /// A facet of the bending-torsion-axial polytope
+    /// ([`crate::yield_surface::Polytope`]): the normal's component along
+    /// `N/Np` (the other three are `normal3`).
+    pub axial: Option<f64>,
 }
 
 /// A generalised coordinate: one unsupported component of one node.
@@ -451,6 +455,51 @@ fn full_blocks(frame: &Frame) -> Full {
         let el = &frame.elements[sec.element];
         let mp = sec.plastic_moment;
         match el.interaction {
+            Some(it) if model == Model::Space && it.axial.is_some() => {
+                let np = it.axial.expect("matched");
+                let polytope =
+                    Polytope::new(it.facets).expect("the scene checked the number of facets");
+                let count = polytope.facets().len();
+                for (i, f) in polytope.facets().iter().enumerate() {
+                    // rounding of an exactly zero component is dropped
+                    let [n2, n3, nt, nn] = f.normal.map(|v| if v.abs() <= 1e-14 { 0.0 } else { v });
+                    let mut column = Vec::with_capacity(4);
+                    for (row, v) in [
+                        (k, n3),
+                        (
+                            ElementRow::Second.row(sec.element, ne),
+                            nt * mp / it.capacity,
+                        ),
+                        (3 * ne + k, n2),
+                        (ElementRow::Third.row(sec.element, ne), nn * mp / np),
+                    ] {
+                        if v != 0.0 {
+                            column.push((row, v));
+                        }
+                    }
+                    let lead = if n3 != 0.0 { n3 } else { n2 };
+                    let bending = n2.hypot(n3);
+                    modes.push(ModeSpec {
+                        mode: YieldMode {
+                            section: k,
+                            sign: if lead >= 0.0 {
+                                Sign::Positive
+                            } else {
+                                Sign::Negative
+                            },
+                            facet: Some(FacetMode {
+                                index: i,
+                                count,
+                                normal: [if lead >= 0.0 { bending } else { -bending }, nt],
+                                normal3: Some([n2, n3, nt]),
+                                axial: Some(nn),
+                            }),
+                        },
+                        column,
+                        capacity: f.offset * mp,
+                    });
+                }
+            }
             Some(it) if model == Model::Space => {
                 let polyhedron =
                     Polyhedron::new(it.facets).expect("the scene checked the number of facets");
@@ -486,6 +535,7 @@ fn full_blocks(frame: &Frame) -> Full {
                                 count: it.facets * it.facets / 2,
                                 normal: [if lead >= 0.0 { bending } else { -bending }, nt],
                                 normal3: Some([n2, n3, nt]),
+                                axial: None,
                             }),
                         },
                         column,
@@ -528,6 +578,7 @@ fn full_blocks(frame: &Frame) -> Full {
                                 count: it.facets,
                                 normal: f.normal,
                                 normal3: None,
+                                axial: None,
                             }),
                         },
                         column,

@@ -146,6 +146,9 @@ pub(crate) struct SecondForceRule {
     pub foreign_message: &'static str,
     /// The message for `facets` without the capacity (when not required).
     pub facets_message: &'static str,
+    /// A third force's capacity key that enlarges the yield surface (space:
+    /// `plastic_axial`, the bending-torsion-axial polytope).
+    pub third_key: Option<&'static str>,
 }
 
 impl Model {
@@ -264,9 +267,10 @@ impl Model {
                 curve: Curve::BendingTorsion,
                 required: true,
                 required_message: "a member of a space scene needs plastic_torque (the plastic torque Tp of the pipe)",
-                foreign_key: "plastic_axial",
-                foreign_message: "not available in the general space model yet (its members are inextensible: the axial force is a reaction); a planar space scene takes it",
+                foreign_key: "",
+                foreign_message: "",
                 facets_message: "",
+                third_key: Some("plastic_axial"),
             },
             Model::Grillage => SecondForceRule {
                 key: "plastic_torque",
@@ -276,6 +280,7 @@ impl Model {
                 foreign_key: "plastic_axial",
                 foreign_message: "not a key of a grillage member (out of plane a member carries bending and torsion: plastic_torque)",
                 facets_message: "",
+                third_key: None,
             },
             Model::Planar => SecondForceRule {
                 key: "plastic_axial",
@@ -285,6 +290,7 @@ impl Model {
                 foreign_key: "plastic_torque",
                 foreign_message: "a key of grillage members only (model = \"grillage\")",
                 facets_message: "facets sets the bending-axial polygon of a planar member: give plastic_axial too",
+                third_key: None,
             },
         }
     }
@@ -297,7 +303,11 @@ impl Model {
     /// zero (no yield mode): the elongation of an inextensible member.
     pub(crate) fn rigid_rows(self, el: &Element, e: usize, ne: usize) -> Option<usize> {
         match self {
-            Model::Space => Some(ElementRow::Third.row(e, ne)),
+            // inextensible unless the axial force enters the polytope
+            Model::Space => el
+                .interaction
+                .is_none_or(|it| it.axial.is_none())
+                .then(|| ElementRow::Third.row(e, ne)),
             _ => self
                 .second_force_is_rigid(el)
                 .then(|| ElementRow::Second.row(e, ne)),
@@ -442,7 +452,9 @@ impl Model {
             // axes (then all three moments carry over in the same axes) at a
             // node whose three rotations are free and unloaded.
             Model::Space => {
-                let same = ea.axes == eb.axes;
+                // an axial yield force is never tied (as planar: the two
+                // elements' axial forces differ by the node's inertia)
+                let same = ea.axes == eb.axes && ea.interaction.is_none_or(|it| it.axial.is_none());
                 [2, 4, 5].iter().all(|&k| !n.fixed[k] && n.load[k] == 0.0)
                     && same
                     && ea.plastic_moment == eb.plastic_moment

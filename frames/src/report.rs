@@ -212,6 +212,9 @@ impl Analysis {
             if let Some(n3) = f.normal3 {
                 o["facet"]["normal3"] = json!(n3);
             }
+            if let Some(nn) = f.axial {
+                o["facet"]["normal_axial"] = json!(nn);
+            }
         }
     }
 
@@ -238,17 +241,23 @@ impl Analysis {
 
     /// The yield surfaces of the scene, one line per distinct polygon.
     pub fn yield_summary(&self) -> Vec<String> {
-        let mut seen: Vec<(crate::yield_surface::Curve, usize)> = Vec::new();
+        let mut seen: Vec<(crate::yield_surface::Curve, usize, bool)> = Vec::new();
         for el in &self.scene.frame.elements {
             if let Some(it) = el.interaction {
-                if !seen.contains(&(it.curve, it.facets)) {
-                    seen.push((it.curve, it.facets));
+                if !seen.contains(&(it.curve, it.facets, it.axial.is_some())) {
+                    seen.push((it.curve, it.facets, it.axial.is_some()));
                 }
             }
         }
         let space = self.scene.frame.model == crate::model::Model::Space;
         seen.iter()
-            .map(|(c, k)| {
+            .map(|&(c, k, axial)| {
+                if axial {
+                    return format!(
+                        "(M2^2 + M3^2)/Mp^2 <= g(T/Tp, N/Np)^2, g(t, n) = s cos(pi n / 2 s), s = sqrt(1 - t^2): inscribed polytope of {} facets ({k} longitudes times the triangles of a (t, n) grid; vertices on the surface), one yield mode per facet",
+                        crate::yield_surface::Polytope::new(k).map_or(0, |p| p.facets().len())
+                    );
+                }
                 if space {
                     return format!(
                         "(M2^2 + M3^2)/Mp^2 + (T/Tp)^2 <= 1: inscribed polyhedron of {} facets ({k} longitudes, the polygon's latitudes; vertices on the surface), one yield mode per facet",
@@ -500,6 +509,7 @@ impl Analysis {
             "axial": match fr.model {
                 crate::model::Model::Planar => "members without plastic_axial inextensible: the axial force of each such element is a member force whose elongation rate is held at zero (no yield mode); with plastic_axial it enters the yield polygon of both end sections",
                 crate::model::Model::Grillage => "grillage: no axial forces; the torque of each element is a member force in the yield polygon of both end sections",
+                crate::model::Model::Space if fr.elements.iter().any(|e| e.interaction.is_some_and(|i| i.axial.is_some())) => "space: members without plastic_axial inextensible (their axial force is a member force whose elongation rate is held at zero); the torque and the two bending moments of each section enter its yield polyhedron, with plastic_axial the axial force too (the polytope)",
                 crate::model::Model::Space => "space: members inextensible (the axial force of each element is a member force whose elongation rate is held at zero); the torque and the two bending moments of each section enter its yield polyhedron",
             },
         });

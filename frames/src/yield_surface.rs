@@ -331,6 +331,243 @@ impl Polyhedron {
     }
 }
 
+/// One facet of a [`Polytope`]: `n . (m2, m3, t, n) <= offset`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Facet4 {
+    /// Unit outward normal `(n_m2, n_m3, n_t, n_n)`.
+    pub normal: [f64; 4],
+    /// Offset `c > 0` (distance of the facet's hyperplane from the origin).
+    pub offset: f64,
+}
+
+/// The pipe's yield condition with bending, torsion and axial force,
+/// `m <= g(t, n)` with `m = |(m2, m3)|` (`m2 = M2/Mp`, `m3 = M3/Mp`,
+/// `t = T/Tp`, `n = N/Np`) and
+///
+/// ```text
+/// g(t, n) = s cos(pi n / (2 s)),   s = sqrt(1 - t^2),   |n| <= s
+/// ```
+///
+/// (a thin-walled pipe whose torque is carried by a uniform shear: by von
+/// Mises the axial stress left is `s sigma_y`, and the bending-axial curve
+/// of the planar model `|m| <= cos(pi n / 2)` is scaled by it). At `n = 0`
+/// it is the sphere of [`Polyhedron`], at `t = 0` the [`Curve::BendingAxial`]
+/// curve; the set is convex (the image of a convex set of wall stresses).
+pub fn pipe_surface(t: f64, n: f64) -> f64 {
+    let s = (1.0 - t * t).max(0.0).sqrt();
+    if n.abs() >= s {
+        0.0
+    } else {
+        s * (0.5 * PI * n / s).cos()
+    }
+}
+
+/// An inscribed polytope of [`pipe_surface`] in `(m2, m3, t, n)`, for the
+/// general space model with `plastic_axial`.
+///
+/// **How the facets are built** (a product: the bending is isotropic). The
+/// vertices are `(r cos phi_i, r sin phi_i, t, n)` with `phi_i = 2 pi i / k`
+/// the `k` longitudes of [`Polyhedron`] and `(t, n, r = g(t, n))` the nodes of
+/// a grid on the disk `t^2 + n^2 <= 1`: rows at the latitudes
+/// `t_j = sin(2 pi j / k)`, `|j| <= k / 4`, and on row `j` the columns
+/// `n = s_j u_i`, `u_i = 4 i / k`, `|i| <= k / 4` (`s_j = cos(2 pi j / k)`),
+/// so `r = s_j cos(pi u_i / 2)`: every vertex on the surface, `r = 0` on
+/// the disk's rim. Their convex hull is `gauge_K(m2, m3) <= rho(t, n)` with
+/// `K` the longitudes' `k`-gon and `rho` the concave piecewise-linear upper
+/// hull of the lifted grid `(t, n, r)`: each grid cell is split into two
+/// triangles along the diagonal that keeps the lifted surface concave (at
+/// the poles, one triangle), and every facet is a pair (edge of `K`,
+/// triangle): `nu . (m2, m3) / cos(pi / k) <= alpha + beta t + gamma n`,
+/// normalised. [`Polytope::new`] checks that every lifted node is on or
+/// below every triangle's plane (the hull is exact) and refuses otherwise.
+///
+/// Row `j = 0` (`t = 0`) holds the vertices of the [`Curve::BendingAxial`]
+/// polygon of `k` facets and column `i = 0` (`n = 0`) the latitudes of
+/// [`Polyhedron`], so the cross-sections `m2 = t = 0` and `n = 0` are exactly
+/// the planar model's polygon and the bending-torsion polyhedron of the same
+/// `k`.
+///
+/// **Size.** `k` edges times `8 q^2 - 4 q` triangles (`q = k / 4`):
+/// `k = 4`: 16 facets per section, 8: 192, 16: 1792, 32: 15360 (about
+/// `k^3 / 2`, against `k^2 / 2` without the axial force).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Polytope {
+    facets: Vec<Facet4>,
+    triangles: usize,
+}
+
+impl Polytope {
+    /// The polytope of `k` longitudes (`k` a multiple of 4 from 4 to 64:
+    /// 15360 facets per section at 32, 126 976 at 64).
+    pub fn new(k: usize) -> Result<Polytope, String> {
+        Polygon::new(Curve::BendingTorsion, k)?;
+        if k > 64 {
+            return Err(format!(
+                "the bending-torsion-axial polytope takes at most 64 longitudes (k^3 / 2 facets per section), got {k}"
+            ));
+        }
+        let q = (k / 4) as isize;
+        let exact_trig = |j: isize| -> (f64, f64) {
+            // (cos, sin) of 2 pi j / k, exact at the axes
+            match j {
+                0 => (1.0, 0.0),
+                j if j == q => (0.0, 1.0),
+                j if j == -q => (0.0, -1.0),
+                j => {
+                    let a = 2.0 * PI * j as f64 / k as f64;
+                    (a.cos(), a.sin())
+                }
+            }
+        };
+        // the lifted grid: node (i, j) -> (t, n, r)
+        let node = |i: isize, j: isize| -> [f64; 3] {
+            let (s, t) = exact_trig(j);
+            let u = i as f64 / q as f64;
+            let r = match i {
+                0 => s,
+                i if i.abs() == q => 0.0,
+                _ => s * (0.5 * PI * u).cos(),
+            };
+            [t, s * u, r]
+        };
+        // the concave interpolant's triangles: (alpha, beta, gamma) with r = alpha + beta t + gamma n
+        let plane = |a: [f64; 3], b: [f64; 3], c: [f64; 3]| -> [f64; 3] {
+            let (u, v) = ([b[0] - a[0], b[1] - a[1]], [c[0] - a[0], c[1] - a[1]]);
+            let det = u[0] * v[1] - u[1] * v[0];
+            let (ru, rv) = (b[2] - a[2], c[2] - a[2]);
+            let beta = (ru * v[1] - rv * u[1]) / det;
+            let gamma = (u[0] * rv - v[0] * ru) / det;
+            [a[2] - beta * a[0] - gamma * a[1], beta, gamma]
+        };
+        let at = |p: [f64; 3], x: [f64; 3]| p[0] + p[1] * x[0] + p[2] * x[1];
+        let mut planes: Vec<[f64; 3]> = Vec::new();
+        for j in -q..q {
+            for i in -q..q {
+                let (a, b) = (node(i, j), node(i + 1, j));
+                let (c, d) = (node(i + 1, j + 1), node(i, j + 1));
+                if j == -q {
+                    planes.push(plane(a, c, d)); // a = b: the south pole
+                } else if j + 1 == q {
+                    planes.push(plane(a, b, c)); // c = d: the north pole
+                } else {
+                    // the diagonal a-c if d is below the plane of (a, b, c), else b-d
+                    let p = plane(a, b, c);
+                    if d[2] <= at(p, d) {
+                        planes.push(p);
+                        planes.push(plane(a, c, d));
+                    } else {
+                        planes.push(plane(a, b, d));
+                        planes.push(plane(b, c, d));
+                    }
+                }
+            }
+        }
+        // the hull is exact: no node above a triangle's plane
+        for j in -q..=q {
+            for i in -q..=q {
+                let x = node(i, j);
+                for p in &planes {
+                    if x[2] > at(*p, x) + 1e-13 {
+                        return Err(format!(
+                            "the lifted grid of {k} longitudes is not concave at node ({i}, {j})"
+                        ));
+                    }
+                }
+            }
+        }
+        // the longitudes' k-gon: edge normals and offset
+        let kgon: Vec<([f64; 2], f64)> = (0..k)
+            .map(|i| {
+                let (a, b) = (lon_point(i, k), lon_point(i + 1, k));
+                let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
+                let len = dx.hypot(dy);
+                let nu = [dy / len, -dx / len];
+                let c = 0.5 * (nu[0] * (a[0] + b[0]) + nu[1] * (a[1] + b[1]));
+                (nu, c)
+            })
+            .collect();
+        let mut facets = Vec::with_capacity(k * planes.len());
+        for (nu, c) in &kgon {
+            for p in &planes {
+                let raw = [nu[0] / c, nu[1] / c, -p[1], -p[2]];
+                let len = raw.iter().map(|x| x * x).sum::<f64>().sqrt();
+                facets.push(Facet4 {
+                    normal: raw.map(|x| x / len),
+                    offset: p[0] / len,
+                });
+            }
+        }
+        Ok(Polytope {
+            facets,
+            triangles: planes.len(),
+        })
+    }
+
+    /// The facets (edge of the longitudes' polygon major, triangle minor).
+    pub fn facets(&self) -> &[Facet4] {
+        &self.facets
+    }
+
+    /// The triangles of the `(t, n)` grid (facets per edge of the longitudes' polygon).
+    pub fn triangles(&self) -> usize {
+        self.triangles
+    }
+
+    /// The largest `s` with `s u` inside the polytope (the load factor of a
+    /// section whose normalised forces are `u = (m2, m3, t, n)` per unit load).
+    pub fn load_factor(&self, u: [f64; 4]) -> f64 {
+        self.facets
+            .iter()
+            .filter_map(|f| {
+                let p = (0..4).map(|d| f.normal[d] * u[d]).sum::<f64>();
+                (p > 0.0).then(|| f.offset / p)
+            })
+            .fold(f64::INFINITY, f64::min)
+    }
+}
+
+/// The smooth surface's load factor along `u = (m2, m3, t, n)`: the largest
+/// `s` with `s |(m2, m3)| <= g(s t, s n)` ([`pipe_surface`]), by bisection
+/// to rounding (the set is convex and star-shaped about the origin).
+pub fn pipe_load_factor(u: [f64; 4]) -> f64 {
+    let m = u[0].hypot(u[1]);
+    let inside = |s: f64| {
+        let (t, n) = (s * u[2], s * u[3]);
+        s * m <= pipe_surface(t, n) && t * t + n * n <= 1.0
+    };
+    let (mut lo, mut hi) = (0.0f64, 1.0f64);
+    while inside(hi) {
+        hi *= 2.0;
+        if hi > 1e300 {
+            return f64::INFINITY;
+        }
+    }
+    for _ in 0..200 {
+        let mid = 0.5 * (lo + hi);
+        if mid <= lo || mid >= hi {
+            break;
+        }
+        if inside(mid) {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    lo
+}
+
+/// The point of longitude `i` of `k` on the unit circle, exact on the axes.
+fn lon_point(i: usize, k: usize) -> [f64; 2] {
+    let i = i % k;
+    let q = k / 4;
+    if i % q == 0 {
+        [[1.0, 0.0], [0.0, 1.0], [-1.0, 0.0], [0.0, -1.0]][i / q]
+    } else {
+        let a = 2.0 * PI * i as f64 / k as f64;
+        [a.cos(), a.sin()]
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -430,5 +667,76 @@ mod tests {
                 "k = {k}: {worst}"
             );
         }
+    }
+
+    #[test]
+    fn polytope_is_inscribed_with_exact_cross_sections() {
+        let mut last = 0.0f64;
+        for k in [4, 8, 16, 32] {
+            let p = Polytope::new(k).unwrap();
+            let q = k / 4;
+            assert_eq!(p.triangles(), 8 * q * q - 4 * q, "k = {k}");
+            assert_eq!(p.facets().len(), k * p.triangles());
+            for f in p.facets() {
+                let len = f.normal.iter().map(|x| x * x).sum::<f64>().sqrt();
+                assert!((len - 1.0).abs() < 1e-15 && f.offset > 0.0);
+            }
+            // the cross-section n = 0 is the bending-torsion polyhedron of k,
+            // m2 = t = 0 the bending-axial polygon of k (the planar model's)
+            let sphere = Polyhedron::new(k).unwrap();
+            let axial = Polygon::new(Curve::BendingAxial, k).unwrap();
+            for a in 0..61 {
+                let (th, ph) = (a as f64 * 0.7137, (a as f64 * 0.3911).sin() * 1.5);
+                let u = [ph.cos() * th.cos(), ph.cos() * th.sin(), ph.sin()];
+                let (got, want) = (
+                    p.load_factor([u[0], u[1], u[2], 0.0]),
+                    sphere.load_factor(u),
+                );
+                assert!(
+                    (got - want).abs() < 1e-12 * want,
+                    "k = {k}, {u:?}: {got} vs {want}"
+                );
+                let (m, n) = (th.cos(), th.sin());
+                let (got, want) = (p.load_factor([0.0, m, 0.0, n]), axial.load_factor(m, n));
+                assert!(
+                    (got - want).abs() < 1e-12 * want,
+                    "k = {k}, ({m}, {n}): {got} vs {want}"
+                );
+            }
+            // inscribed: never outside the smooth surface; the gap closes with k
+            let mut worst = 0.0f64;
+            for a in 0..200 {
+                let x = a as f64;
+                let u = [
+                    (x * 0.37).sin(),
+                    (x * 0.91).cos(),
+                    (x * 0.53).sin() * 0.8,
+                    (x * 1.31).cos() * 0.9,
+                ];
+                let (s, smooth) = (p.load_factor(u), pipe_load_factor(u));
+                assert!(s <= smooth * (1.0 + 1e-12), "k = {k}: outside along {u:?}");
+                worst = worst.max(1.0 - s / smooth);
+            }
+            assert!(last == 0.0 || worst < last, "k = {k}: {worst} vs {last}");
+            last = worst;
+        }
+        assert!(last < 2e-2, "{last}");
+        assert!(Polytope::new(128).is_err() && Polytope::new(6).is_err());
+    }
+
+    #[test]
+    fn pipe_surface_sections() {
+        // n = 0: the sphere; t = 0: the planar curve; zero on the rim
+        for a in 0..50 {
+            let x = a as f64 / 50.0;
+            assert!((pipe_surface(x, 0.0) - (1.0 - x * x).sqrt()).abs() < 1e-15);
+            assert!((pipe_surface(0.0, x) - (0.5 * PI * x).cos()).abs() < 1e-15);
+            let (c, s) = (x.cos(), x.sin());
+            assert!(pipe_surface(c, s).abs() < 1e-12);
+        }
+        let s = pipe_load_factor([0.0, 1.0, 0.0, 0.0]);
+        assert!((s - 1.0).abs() < 1e-15, "{s}");
+        let s = pipe_load_factor([0.0, 0.0, 0.0, 2.0]);
+        assert!((s - 0.5).abs() < 1e-15, "{s}");
     }
 }

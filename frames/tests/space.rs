@@ -535,7 +535,8 @@ fn hinge_lambdas(a: &Analysis) -> Vec<f64> {
 /// cross-sections at zero out-of-plane (in-plane) forces are exactly the
 /// planar model's `|m| <= Mp` (the grillage's polygon of `k` facets), and
 /// zero out-of-plane motion is a solution of the space system. Scenes with
-/// `plastic_axial` are left out (the general model has no axial yield yet).
+/// `plastic_axial` are left out here (their own test:
+/// `plastic_axial_written_in_the_plane_agrees_with_the_planar_model`).
 #[test]
 fn general_assembly_of_planar_scenes_gives_the_reduced_breakpoints() {
     let mut count = 0;
@@ -817,7 +818,7 @@ fn time_stepping_follows_the_path_on_the_3d_run() {
 }
 
 /// The general model's keys and their errors: `orientation` (space scenes
-/// only, across the member), `plastic_axial` (refused in the general model),
+/// only, across the member), `plastic_axial` (the polytope, at most 64 longitudes),
 /// a rotation fixed alone at a support (any of the six may be).
 #[test]
 fn general_space_keys_and_errors() {
@@ -845,11 +846,20 @@ fn general_space_keys_and_errors() {
     );
     let e = err(&with("orientation = [1.0, 0.0]"));
     assert!(e.contains("three finite numbers"), "{e}");
-    let e = err(&with("plastic_axial = 4.0"));
+    // plastic_axial: the polytope, at most 64 longitudes
+    let axial = Scene::from_toml(&with("plastic_axial = 4.0"), "s.toml").unwrap();
+    assert_eq!(
+        axial.frame.elements[0].interaction.unwrap().axial,
+        Some(4.0)
+    );
+    assert_eq!(axial.frame.elements[3].interaction.unwrap().axial, None);
+    let e = err(&with("plastic_axial = 4.0").replace("facets = 8", "facets = 128"));
     assert!(
-        e.contains("plastic_axial") && e.contains("general space model"),
+        e.contains("facets") && e.contains("at most 64 longitudes"),
         "{e}"
     );
+    let e = err(&with("plastic_axial = -4.0"));
+    assert!(e.contains("plastic_axial"), "{e}");
     let planar = std::fs::read_to_string(format!(
         "{}/../scenes/cantilever.toml",
         env!("CARGO_MANIFEST_DIR")
@@ -1000,4 +1010,254 @@ fn arcs_in_space_give_the_planar_and_grillage_answers() {
         e.contains("normal") && e.contains("space scenes only"),
         "{e}"
     );
+}
+
+/// An L-shaped space cantilever (legs along x and y, clamped at A) whose
+/// members have `plastic_axial`, loaded at the tip by `(1, 0, -0.5)`: the
+/// clamp section carries an axial force, a torque and both bending moments.
+fn l_axial(k: usize) -> String {
+    let node = |id: &str, x: f64, y: f64| {
+        format!("[[node]]\nid = \"{id}\"\nx = {x:?}\ny = {y:?}\nz = 0.0\n\n")
+    };
+    let member = |id: &str, from: &str, to: &str| {
+        format!(
+            "[[member]]\nid = \"{id}\"\nfrom = \"{from}\"\nto = \"{to}\"\nplastic_moment = 1.0\nplastic_torque = 0.9068996821171089\nplastic_axial = 2.0\nmass_per_length = 1.0\n\n"
+        )
+    };
+    format!(
+        "title = \"L-shaped space cantilever, axial interaction\"\nmodel = \"space\"\n\n[yield]\nfacets = {k}\n\n{}{}{}{}{}[[support]]\nnode = \"A\"\nfix = [\"x\", \"y\", \"z\", \"rx\", \"ry\", \"rz\"]\n\n[[load]]\nnode = \"C\"\nfx = 1.0\nfz = -0.5\n",
+        node("A", 0.0, 0.0),
+        node("B", 1.0, 0.0),
+        node("C", 1.0, 1.0),
+        member("AB", "A", "B"),
+        member("BC", "B", "C"),
+    )
+}
+
+/// `plastic_axial` in the general space model: the first breakpoint of the
+/// L-shaped cantilever equals the static collapse load of an LP with the
+/// same polytope (the shared reference, Clarabel) and the statics by hand
+/// with `Polytope::load_factor`; the lower bounds rise with the refinement
+/// `k` toward the smooth surface's (`pipe_load_factor`, by bisection on
+/// the closed form `g(t, n)`), and are below the collapse load without the
+/// axial force (the polyhedron of the same `k`).
+#[test]
+fn axial_polytope_collapse_loads_rise_to_the_smooth_surfaces() {
+    use frames::yield_surface::{pipe_load_factor, Polyhedron, Polytope};
+    let tp = 0.9068996821171089;
+    let np = 2.0;
+    let force = [1.0, 0.0, -0.5];
+    // the normalised section forces (m2, m3, t, n) per unit load, by hand
+    let sections = |a: &Analysis| -> Vec<[f64; 4]> {
+        let fr = &a.scene.frame;
+        let tip = &fr.nodes[fr.node_index("C").unwrap()];
+        let mut out = vec![];
+        for el in &fr.elements {
+            let [e1, e2, e3] = el.axes;
+            for n in [&fr.nodes[el.from], &fr.nodes[el.to]] {
+                let arm = [tip.x - n.x, tip.y - n.y, tip.z - n.z];
+                let m = [
+                    arm[1] * force[2] - arm[2] * force[1],
+                    arm[2] * force[0] - arm[0] * force[2],
+                    arm[0] * force[1] - arm[1] * force[0],
+                ];
+                let dot = |u: [f64; 3], v: [f64; 3]| u[0] * v[0] + u[1] * v[1] + u[2] * v[2];
+                out.push([dot(e2, m), dot(e3, m), dot(e1, m) / tp, dot(e1, force) / np]);
+            }
+        }
+        out
+    };
+    let mut last = 0.0;
+    let mut smooth = f64::NAN;
+    for k in [4usize, 8, 16, 32] {
+        let src = l_axial(k);
+        let scene = Scene::from_toml(&src, "l.toml").unwrap();
+        assert_eq!(scene.frame.model, frames::model::Model::Space);
+        let poly = Polytope::new(k).unwrap();
+        let analysis = (k <= 8).then(|| run(&src, "l.toml"));
+        let by_hand_of = |u: &[[f64; 4]]| {
+            u.iter()
+                .map(|u| poly.load_factor(*u))
+                .fold(f64::INFINITY, f64::min)
+        };
+        let us = match &analysis {
+            Some(a) => sections(a),
+            None => {
+                let a = frames::Analysis::run(
+                    Scene::from_toml(&l_axial(4), "l.toml").unwrap(),
+                    &AnalysisOptions::default(),
+                )
+                .unwrap();
+                sections(&a)
+            }
+        };
+        let by_hand = by_hand_of(&us);
+        smooth = us
+            .iter()
+            .map(|u| pipe_load_factor(*u))
+            .fold(f64::INFINITY, f64::min);
+        // without the axial force: the polyhedron of the same k
+        let torsion = Polyhedron::new(k).unwrap();
+        let no_axial = us
+            .iter()
+            .map(|u| torsion.load_factor([u[0], u[1], u[2]]))
+            .fold(f64::INFINITY, f64::min);
+        if let Some(a) = &analysis {
+            let first = a.reading.breakpoints[0].lambda;
+            let lp = common::reference::lp_collapse_load(&a.system);
+            eprintln!(
+                "k = {k:>2}: {} facets, {} modes, {} pivots: first breakpoint {first:.9}, LP {lp:.9}, by hand {by_hand:.9}, smooth {smooth:.9}, without N {no_axial:.9}",
+                poly.facets().len(),
+                a.system.modes.len(),
+                a.solution.info.pivots
+            );
+            assert!(
+                (first - lp).abs() <= 1e-7 * lp,
+                "k = {k}: {first} vs LP {lp}"
+            );
+            assert!(
+                (first - by_hand).abs() <= 1e-12 * lp,
+                "k = {k}: {first} vs {by_hand}"
+            );
+        } else {
+            eprintln!(
+                "k = {k:>2}: {} facets, by hand {by_hand:.9}, smooth {smooth:.9}, without N {no_axial:.9}",
+                poly.facets().len()
+            );
+        }
+        assert!(
+            by_hand <= smooth * (1.0 + 1e-14),
+            "k = {k}: above the smooth"
+        );
+        assert!(
+            by_hand < no_axial,
+            "k = {k}: the axial force does not count"
+        );
+        assert!(by_hand > last, "k = {k}: not rising");
+        last = by_hand;
+    }
+    assert!((smooth - last) / smooth < 1e-2, "{last} vs {smooth}");
+}
+
+/// A planar scene with `plastic_axial` written as space and assembled as
+/// the general model (the polytope of 8 longitudes, whose cross-section
+/// `M2 = T = 0` is exactly the planar bending-axial polygon of 8 facets)
+/// forms every hinge of the planar model's path at the same `Lambda`, to
+/// `1e-9`, and no other.
+#[test]
+fn plastic_axial_written_in_the_plane_agrees_with_the_planar_model() {
+    let src = pipe_whip("quadrant-axial.toml").replace("facets = 16", "facets = 8");
+    let base = run(&src, "quadrant-axial.toml");
+    let space = as_space(&src, None).unwrap();
+    let g = run_with(&space, "quadrant-axial.toml", false);
+    assert_eq!(g.system.model, frames::model::Model::Space);
+    assert!(g
+        .scene
+        .frame
+        .elements
+        .iter()
+        .all(|e| e.interaction.unwrap().axial == Some(4.0)));
+    let (hr, hg) = (hinge_lambdas(&base), hinge_lambdas(&g));
+    let first_unloading = base
+        .reading
+        .deactivations()
+        .first()
+        .map_or(f64::INFINITY, |d| d.0);
+    eprintln!(
+        "planar {} modes, hinges {hr:?}; general {} modes, hinges {hg:?}; first unloading {first_unloading}",
+        base.system.modes.len(),
+        g.system.modes.len()
+    );
+    // the whole path, beyond the first unloading too (no ties differ: the
+    // planar model never ties a section with an axial interaction)
+    assert!(hr.len() > 3 && hr.iter().any(|&l| l > first_unloading));
+    assert_eq!(hr.len(), hg.len(), "{hr:?} vs {hg:?}");
+    for (x, y) in hr.iter().zip(&hg) {
+        assert!((x - y).abs() <= 1e-9 * x.abs().max(1.0), "{x} vs {y}");
+    }
+}
+
+/// The plots of a space scene show what a pipe engineer reads: the bending
+/// magnitude `sqrt(M2^2 + M3^2)` (within `Mp`) and the torque (within `Tp`)
+/// per section, in a projection the plot names (automatic: isometric for
+/// the 3D run; chosen: an elevation).
+#[test]
+fn space_plots_show_bending_magnitude_and_torque_in_a_named_projection() {
+    use frames::plot::{write_all_with, View};
+    let a = run(&pipe_whip("space-restraint.toml"), "space-restraint.toml");
+    assert_eq!(a.system.model, frames::model::Model::Space);
+    let dir = std::env::temp_dir().join(format!("frames-space-plots-{}", std::process::id()));
+    write_all_with(&a, &dir, View::Auto).unwrap();
+    let csv = std::fs::read_to_string(dir.join("moments.csv")).unwrap();
+    let mut lines = csv.lines();
+    assert_eq!(
+        lines.next().unwrap(),
+        "lambda,member,node,end,s,moment,m2,bending,torque"
+    );
+    let tp = 0.9068996821171089;
+    let (mut rows, mut torqued) = (0, 0);
+    for l in lines {
+        let v: Vec<f64> = l.split(',').skip(5).map(|x| x.parse().unwrap()).collect();
+        let (m3, m2, b, t) = (v[0], v[1], v[2], v[3]);
+        assert_eq!(b, m2.hypot(m3), "{l}");
+        assert!(b <= 1.0 + 1e-9 && t.abs() <= tp * (1.0 + 1e-9), "{l}");
+        rows += 1;
+        torqued += usize::from(t.abs() > 1e-3);
+    }
+    assert!(
+        rows > 0 && torqued > 0,
+        "{rows} rows, {torqued} with a torque"
+    );
+    // sampled: 77 breakpoints, 12 diagrams, and the plot says so
+    let lambdas: std::collections::BTreeSet<&str> = csv
+        .lines()
+        .skip(1)
+        .map(|l| l.split(',').next().unwrap())
+        .collect();
+    assert_eq!(
+        lambdas.len(),
+        frames::plot::MAX_CURVES.min(a.reading.breakpoints.len())
+    );
+    let svg = std::fs::read_to_string(dir.join("moments.svg")).unwrap();
+    assert!(svg.contains("sqrt(M2^2 + M3^2)") && svg.contains("Torque"));
+    if a.reading.breakpoints.len() > frames::plot::MAX_CURVES {
+        assert!(svg.contains("sampled evenly"));
+    }
+    let geo = std::fs::read_to_string(dir.join("geometry.svg")).unwrap();
+    assert!(geo.contains("isometric view from (1, 1, 1)"));
+    assert!(std::fs::read_to_string(dir.join("geometry.csv"))
+        .unwrap()
+        .starts_with("order,lambda,node,x,y,z,hinge"));
+    write_all_with(&a, &dir, View::Xz).unwrap();
+    let geo = std::fs::read_to_string(dir.join("geometry.svg")).unwrap();
+    assert!(geo.contains("elevation x-z"));
+    assert!(View::parse("iso").is_ok() && View::parse("front").is_err());
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// Plots stay readable with many hinges: a 40-element cantilever (31
+/// breakpoints) draws 12 moment diagrams and says so, the geometry's legend
+/// numbers the first 20 hinges and says so.
+#[test]
+fn plots_sample_and_say_so() {
+    let src = "title = \"uniform cantilever\"\n[[node]]\nid = \"A\"\nx = 0.0\ny = 0.0\n[[node]]\nid = \"B\"\nx = 1.0\ny = 0.0\n[[member]]\nid = \"AB\"\nfrom = \"A\"\nto = \"B\"\nplastic_moment = 1.0\nmass_per_length = 1.0\nelements = 40\n[[support]]\nnode = \"A\"\nfix = [\"x\", \"y\", \"rz\"]\n[[load]]\nnode = \"B\"\nfy = 1.0\n";
+    let scene = Scene::from_toml(src, "c.toml").unwrap();
+    let mut options = AnalysisOptions::default();
+    options.solve.lambda_max = Some(12.0);
+    let a = Analysis::run(scene, &options).unwrap();
+    let n = a.reading.breakpoints.len();
+    assert!(n > 20, "{n}");
+    let dir = std::env::temp_dir().join(format!("frames-sampled-plots-{}", std::process::id()));
+    frames::plot::write_all(&a, &dir).unwrap();
+    let svg = std::fs::read_to_string(dir.join("moments.svg")).unwrap();
+    assert!(svg.contains(&format!("12 of {n} critical Lambda values, sampled evenly")));
+    assert_eq!(svg.matches("Lambda = ").count(), 12);
+    let geo = std::fs::read_to_string(dir.join("geometry.svg")).unwrap();
+    let hinges = a.reading.hinges.len();
+    assert!(
+        geo.contains(&format!("the first 20 of {hinges}")),
+        "{hinges}"
+    );
+    assert_eq!(geo.matches("at Lambda = ").count(), 20);
+    let _ = std::fs::remove_dir_all(&dir);
 }

@@ -37,6 +37,9 @@ enum Command {
         /// Write SVG plots and CSV tables to this directory.
         #[arg(long, value_name = "DIR")]
         plots: Option<PathBuf>,
+        /// Projection of a space scene's plots: auto (the nodes' coordinate plane, else iso), xy, xz, yz or iso.
+        #[arg(long, default_value = "auto", value_parser = frames::plot::View::parse)]
+        view: frames::plot::View,
         /// wolfe (long form, any frame) or lemke (Schur reduction, statically determinate frames).
         #[arg(long, default_value = "wolfe", value_parser = parse_method)]
         method: Method,
@@ -148,6 +151,7 @@ fn run(cli: Cli) -> Result<(), FramesError> {
             scene,
             json,
             plots,
+            view,
             method,
             precision,
             certify,
@@ -210,7 +214,7 @@ fn run(cli: Cli) -> Result<(), FramesError> {
             }
             if let Some(dir) = plots {
                 let progress = plcp::progress::Progress::spinner("writing plots", cli.quiet);
-                let files = frames::plot::write_all(&analysis, &dir)?;
+                let files = frames::plot::write_all_with(&analysis, &dir, view)?;
                 progress.finish();
                 if !json {
                     for f in files {
