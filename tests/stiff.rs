@@ -148,8 +148,10 @@ fn escalation_ends_in_exact_arithmetic_and_is_certified() {
     let d = faer::Col::<f64>::from_fn(n, |i| d[i]);
     let problem = plcp::Plcp::mixed(m.as_ref(), q.as_ref(), d.as_ref(), *free).unwrap();
     let p128: plcp::Plcp<faer::fx128> = problem.cast();
-    let mut settings = plcp::Settings::<faer::fx128>::default();
-    settings.escalate = true;
+    let mut settings = plcp::Settings::<faer::fx128> {
+        escalate: true,
+        ..Default::default()
+    };
     let floats = plcp::solve(&p128, &settings).unwrap();
     println!(
         "floats: {} {:?} {:?}",

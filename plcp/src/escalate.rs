@@ -478,7 +478,7 @@ pub(crate) fn continue_exactly<T: Scalar>(
     let half = T::from_f64(0.5);
     let attempt = |k: usize| -> Result<crate::exact::ExactPath, String> {
         let seg = &path.segments[k];
-        if seg.unbounded || !(seg.lambda_to > seg.lambda_from) {
+        if seg.unbounded || seg.lambda_to <= seg.lambda_from || !seg.lambda_to.is_finite() {
             return Err(format!("segment {k} has no interior to restart in"));
         }
         let basis: Vec<Var> = seg
