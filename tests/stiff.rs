@@ -127,3 +127,85 @@ fn huge_9_traced_exactly_agrees_with_fx128() {
     let cert = plcp::certify(&p128, &path128);
     assert!(!cert.certified() || agree == path128.breakpoints.len());
 }
+
+/// Issue 14: the last step of the escalation, f64 then fx128 then exact
+/// (`Settings::escalate_exact`). The random case "scaled #0" (n = 10, the
+/// draws of the test above; `D M D` with `D` spanning up to 1e+-8) traced in
+/// fx128 ends `ill_conditioned`; with the exact tail the path is
+/// finished in exact arithmetic, certified, ends as the exact tracer's, and
+/// the escalation says which precision produced each segment.
+#[test]
+fn escalation_ends_in_exact_arithmetic_and_is_certified() {
+    let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(20261123);
+    let case = stiff_random::draw(&mut rng, stiff_random::FAMILIES[0], 0);
+    assert!(case.name.starts_with("scaled #0"), "{}", case.name);
+    let stiff_core::Problem::Plcp { m, q, d, free, .. } = &case.problem else {
+        panic!("a PLCP")
+    };
+    let n = q.len();
+    let m = faer::Mat::<f64>::from_fn(n, n, |i, j| m[i][j]);
+    let q = faer::Col::<f64>::from_fn(n, |i| q[i]);
+    let d = faer::Col::<f64>::from_fn(n, |i| d[i]);
+    let problem = plcp::Plcp::mixed(m.as_ref(), q.as_ref(), d.as_ref(), *free).unwrap();
+    let p128: plcp::Plcp<faer::fx128> = problem.cast();
+    let mut settings = plcp::Settings::<faer::fx128> {
+        escalate: true,
+        ..Default::default()
+    };
+    let floats = plcp::solve(&p128, &settings).unwrap();
+    println!(
+        "floats: {} {:?} {:?}",
+        floats.status.as_str(),
+        floats
+            .breakpoints
+            .iter()
+            .map(|b| b.lambda.to_f64())
+            .collect::<Vec<_>>(),
+        floats
+            .info
+            .escalation
+            .as_ref()
+            .map(|e| &e.segment_precisions)
+    );
+    assert_eq!(
+        floats.status,
+        plcp::Status::IllConditioned,
+        "fx128: {}",
+        floats.message
+    );
+    settings.escalate_exact = true;
+    let path = plcp::solve(&p128, &settings).unwrap();
+    let esc = path.info.escalation.clone().expect("escalated");
+    println!(
+        "exact tail: {} {:?} {:?} from {}: {}",
+        path.status.as_str(),
+        path.breakpoints
+            .iter()
+            .map(|b| b.lambda.to_f64())
+            .collect::<Vec<_>>(),
+        esc.segment_precisions,
+        esc.lambda_exact,
+        path.message
+    );
+    assert!(esc.exact, "{}", esc.exact_note);
+    assert_ne!(
+        path.status,
+        plcp::Status::IllConditioned,
+        "{}",
+        path.message
+    );
+    assert_eq!(esc.segment_precisions.len(), path.segments.len());
+    assert_eq!(esc.segment_precisions.last(), Some(&"exact"));
+    // as the exact tracer ends, with its breakpoints
+    let exact = plcp::exact::trace(&problem, &plcp::Settings::default()).unwrap();
+    assert_eq!(path.status, exact.path.status, "{}", exact.path.message);
+    assert_eq!(path.breakpoints.len(), exact.breakpoints.len());
+    for (a, b) in path.breakpoints.iter().zip(&exact.breakpoints) {
+        let (a, e) = (a.lambda.to_f64(), plcp::exact::rational_to_f64(b));
+        assert!((a - e).abs() <= 1e-9 * e.abs().max(1e-300), "{a} vs {e}");
+    }
+    if path.status.is_success() {
+        let cert = plcp::certify(&p128, &path);
+        assert!(cert.certified(), "{}", cert.summary());
+    }
+}

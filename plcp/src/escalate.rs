@@ -87,6 +87,7 @@ fn settings_fx128<T: Scalar>(s: &Settings<T>, warm: Option<Vec<Var>>) -> Setting
         basis: s.basis,
         warm_basis: warm,
         escalate: false,
+        escalate_exact: false,
         threads: s.threads,
     }
 }
@@ -287,6 +288,11 @@ pub(crate) fn continue_in_fx128<T: Scalar>(
     };
     escalation.kept_segments = k;
     escalation.pivots_fx128 = rest.info.pivots;
+    escalation.segment_precisions = path.segments[..k.min(path.segments.len())]
+        .iter()
+        .map(|_| T::NAME)
+        .chain(rest.segments.iter().map(|_| <fx128 as Scalar>::NAME))
+        .collect();
     splice(path, k, rest, &mut escalation);
     escalation.seconds_fx128 = timer.elapsed().as_secs_f64();
     path.info.solve_seconds = escalation.seconds_before + escalation.seconds_fx128;
@@ -425,4 +431,196 @@ fn splice<T: Scalar>(path: &mut Path<T>, k: usize, rest: Path<fx128>, esc: &mut 
         info.warm_start_note = rest.info.warm_start_note.clone();
         info.free_block = rest.info.free_block.clone();
     }
+}
+
+/// The last step of the escalation ([`Settings::escalate_exact`]): a path
+/// still `ill_conditioned` (after `fx128`, or in `fx128` itself) is continued
+/// in exact rational arithmetic ([`crate::exact::trace_from`]).
+///
+/// The restart is chosen as for `fx128` ([`restart_segment`], then
+/// `1, 2, 4, ...` segments back): the exact tracer starts inside segment `k`
+/// on its basis, which it checks exactly (complementary, nonsingular,
+/// feasible there), and its first segment must stay feasible back to the
+/// segment's start ([`feasible_back_to`]); else the whole path is traced
+/// exactly from `lambda0`. The exact segments and breakpoints (rounded to
+/// `T`) replace the path from `k` on, and [`Escalation::segment_precisions`]
+/// says which precision produced each segment. Problems of order above
+/// [`crate::tolerance::ESCALATE_EXACT_MAX_DIM`] are left as they are, with a
+/// note.
+pub(crate) fn continue_exactly<T: Scalar>(
+    problem: &Plcp<T>,
+    settings: &Settings<T>,
+    path: &mut Path<T>,
+) {
+    if path.status != Status::IllConditioned {
+        return;
+    }
+    let timer = std::time::Instant::now();
+    let mut esc = path.info.escalation.take().unwrap_or_else(|| Escalation {
+        from: T::NAME,
+        reason: format!("{} in {}: {}", path.status.as_str(), T::NAME, path.message),
+        pivots_before: path.info.pivots,
+        seconds_before: path.info.solve_seconds,
+        ..Escalation::default()
+    });
+    if esc.segment_precisions.len() != path.segments.len() {
+        esc.segment_precisions = vec![T::NAME; path.segments.len()];
+    }
+    let dim = problem.dim();
+    if dim > crate::tolerance::ESCALATE_EXACT_MAX_DIM {
+        esc.exact_note = format!(
+            "not continued exactly: order {dim} exceeds ESCALATE_EXACT_MAX_DIM = {}",
+            crate::tolerance::ESCALATE_EXACT_MAX_DIM
+        );
+        path.info.escalation = Some(esc);
+        return;
+    }
+    let half = T::from_f64(0.5);
+    let attempt = |k: usize| -> Result<crate::exact::ExactPath, String> {
+        let seg = &path.segments[k];
+        if seg.unbounded || seg.lambda_to <= seg.lambda_from || !seg.lambda_to.is_finite() {
+            return Err(format!("segment {k} has no interior to restart in"));
+        }
+        let basis: Vec<Var> = seg
+            .basis
+            .iter()
+            .copied()
+            .filter(|v| matches!(v, Var::Z(_) | Var::W(_) | Var::U(_)))
+            .collect();
+        let mid = seg.lambda_from + (seg.lambda_to - seg.lambda_from) * half;
+        let rest =
+            crate::exact::trace_from(problem, settings, &basis, mid).map_err(|e| e.to_string())?;
+        // the same check as for fx128: no event between L_k and the restart
+        if let Some(s) = rest.path.segments.first() {
+            let back = seg.lambda_from.to_f64() - s.lambda_from;
+            let span = 1f64
+                .max(seg.lambda_from.to_f64().abs())
+                .max(back.abs())
+                .max(if s.unbounded {
+                    1.0
+                } else {
+                    (s.lambda_to - s.lambda_from).abs()
+                });
+            let gap = T::eps().to_f64().sqrt() * span;
+            for (from, slope) in [(&s.z_from, &s.dz), (&s.w_from, &s.dw)] {
+                for i in 0..from.nrows() {
+                    let v = from[i] + slope[i] * back;
+                    if v < 0.0 && -v > gap * slope[i].abs() {
+                        return Err(format!(
+                            "the basis of segment {k} is not the path's at L = {:e} (an event lies between)",
+                            seg.lambda_from.to_f64()
+                        ));
+                    }
+                }
+            }
+        }
+        Ok(rest)
+    };
+    let warm = restart_segment(path).and_then(|k0| {
+        let mut why = String::new();
+        for k in restart_candidates(k0.min(path.segments.len().saturating_sub(1))) {
+            match attempt(k) {
+                Ok(rest) => return Ok((k, rest)),
+                Err(e) => why = e,
+            }
+        }
+        Err(why)
+    });
+    let (k, rest, from) = match warm {
+        Ok((k, rest)) => {
+            let from = path.segments[k].lambda_from;
+            (k, rest, from)
+        }
+        Err(why) => match crate::exact::trace(problem, settings) {
+            Ok(rest) => {
+                esc.exact_note = format!("traced exactly from lambda0 ({why})");
+                (0, rest, problem.lambda0())
+            }
+            Err(e) => {
+                esc.exact_note = format!("the exact continuation could not run: {e} ({why})");
+                path.info.escalation = Some(esc);
+                return;
+            }
+        },
+    };
+    let warm = from != problem.lambda0() || k > 0;
+    esc.exact = true;
+    esc.lambda_exact = from.to_f64();
+    let t = |v: f64| T::from_f64(v);
+    let col = |c: &Col<f64>| Col::<T>::from_fn(c.nrows(), |i| t(c[i]));
+    path.segments.truncate(k);
+    esc.segment_precisions.truncate(k);
+    path.breakpoints.retain(|b| warm && b.segment <= k);
+    for (j, s) in rest.path.segments.iter().enumerate() {
+        let mut s = s.clone();
+        if warm && j == 0 {
+            let back = from.to_f64() - s.lambda_from;
+            for (v, slope) in [
+                (&mut s.z_from, &s.dz),
+                (&mut s.w_from, &s.dw),
+                (&mut s.u_from, &s.du),
+            ] {
+                for i in 0..v.nrows() {
+                    v[i] += slope[i] * back;
+                }
+            }
+            s.lambda_from = from.to_f64();
+        }
+        path.segments.push(Segment {
+            lambda_from: t(s.lambda_from),
+            lambda_to: t(s.lambda_to),
+            unbounded: s.unbounded,
+            basis: s.basis.clone(),
+            z_from: col(&s.z_from),
+            dz: col(&s.dz),
+            w_from: col(&s.w_from),
+            dw: col(&s.dw),
+            u_from: col(&s.u_from),
+            du: col(&s.du),
+        });
+        esc.segment_precisions.push("exact");
+    }
+    for b in &rest.path.breakpoints {
+        path.breakpoints.push(Breakpoint {
+            lambda: t(b.lambda),
+            entering: b.entering,
+            leaving: b.leaving,
+            degenerate: b.degenerate,
+            turning: b.turning,
+            segment: b.segment + k,
+            residual: b.residual,
+        });
+    }
+    let r = &rest.path;
+    path.status = r.status;
+    path.lambda_reached = t(r.lambda_reached);
+    let pt = |p: &Point<f64>| Point {
+        lambda: t(p.lambda),
+        z: col(&p.z),
+        w: col(&p.w),
+        u: col(&p.u),
+    };
+    path.end = pt(&r.end);
+    path.ray = r.ray.as_ref().map(|ray| Ray {
+        start: pt(&ray.start),
+        dz: col(&ray.dz),
+        dw: col(&ray.dw),
+        du: col(&ray.du),
+        dlambda: t(ray.dlambda),
+    });
+    path.final_basis = r.final_basis.clone();
+    path.message = format!(
+        "continued in exact arithmetic from L = {:e} ({} segments kept) after {}: the exact run ended {}. {}",
+        from.to_f64(),
+        k,
+        path.message,
+        r.status.as_str(),
+        r.message
+    )
+    .trim_end()
+    .to_string();
+    path.info.pivots += r.info.pivots;
+    path.info.turning_points += r.info.turning_points;
+    path.info.solve_seconds += timer.elapsed().as_secs_f64();
+    path.info.escalation = Some(esc);
 }

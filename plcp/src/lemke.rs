@@ -332,8 +332,53 @@ pub fn solve_lcp<T: Scalar>(
         ..Info::default()
     };
     let problem = Plcp::new(lcp.m(), lcp.q(), d.as_ref())?;
+    // equilibrated like every path (`crate::trace`): the engine's tolerances
+    // (floors of one in the scale of the basic values and of the parameter)
+    // are relative to the data only on the equilibrated problem, whose
+    // right-hand side is brought near one. Unscaled, `q` of 2e-4 in f32 met
+    // tie windows of `1e3 eps * 1` in `x` (issue 14, defect 7: Siconos
+    // `enum_fails` in f32 passed its blocking row and ended `reached` with
+    // Siconos error 1.04). The covering vector scales with the rows, so the
+    // start phase is Lemke's method with the given vector on the original data.
+    let eq = if settings.scaling {
+        crate::scaling::Equilibration::ruiz(&problem, 8)
+    } else {
+        crate::scaling::Equilibration {
+            rows: vec![1.0; n],
+            cols: vec![1.0; n],
+        }
+    };
+    let scaled = if eq.is_identity() {
+        None
+    } else {
+        eq.scale(&problem)
+    };
+    let eq = if scaled.is_some() {
+        eq
+    } else {
+        crate::scaling::Equilibration {
+            rows: vec![1.0; n],
+            cols: vec![1.0; n],
+        }
+    };
+    let (sm, sq) = match &scaled {
+        Some(s) => (s.m(), s.q().to_owned()),
+        None => (lcp.m(), q.clone()),
+    };
+    let covering = Col::<T>::from_fn(n, |i| {
+        let c = settings.covering.as_ref().map_or(T::one(), |c| c[i]);
+        c * T::from_f64(eq.rows[i])
+    });
+    let q = sq;
+    let unscale = |mut pt: Point<T>| {
+        for i in 0..n {
+            pt.z[i] *= T::from_f64(eq.cols[i]);
+            pt.w[i] /= T::from_f64(eq.rows[i]);
+        }
+        pt
+    };
     let (status, message, point) = match Engine::new(
-        lcp.m().into(),
+        sm.into(),
         0,
         q.clone(),
         d.clone(),
@@ -347,19 +392,19 @@ pub fn solve_lcp<T: Scalar>(
             Point {
                 lambda: T::zero(),
                 z: Col::zeros(n),
-                w: q.clone(),
+                w: lcp.q.clone(),
                 u: Col::zeros(0),
             },
         ),
         Ok(mut eng) => {
-            let r = start_phase(&mut eng, &q, &d, T::zero(), settings.covering.as_ref());
+            let r = start_phase(&mut eng, &q, &d, T::zero(), Some(&covering));
             info.pivots = eng.pivots;
             info.start_pivots = eng.pivots;
             info.degenerate_pivots = eng.degenerate_pivots;
             info.refactorisations = eng.refactorisations;
             info.max_condition = eng.max_cond;
             match r {
-                Ok(()) => (Status::Reached, String::new(), eng.point(None)),
+                Ok(()) => (Status::Reached, String::new(), unscale(eng.point(None))),
                 Err(f) => {
                     // Lemke's secondary ray is the LCP's outcome here, not "infeasible"
                     let status = if f.status == Status::Infeasible {
@@ -367,7 +412,7 @@ pub fn solve_lcp<T: Scalar>(
                     } else {
                         f.status
                     };
-                    let mut pt = eng.point(None);
+                    let mut pt = unscale(eng.point(None));
                     pt.lambda = T::zero();
                     (status, f.message, pt)
                 }

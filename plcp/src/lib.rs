@@ -120,6 +120,14 @@ pub fn solve<T: Scalar>(problem: &Plcp<T>, settings: &Settings<T>) -> Result<Pat
             trace::guard_residual(&mut path);
         }
     }
+    if settings.escalate && settings.escalate_exact && path.status == Status::IllConditioned {
+        escalate::continue_exactly(problem, settings, &mut path);
+        if path.info.escalation.as_ref().is_some_and(|e| e.exact) {
+            let both_ends = settings.method == Method::Lemke && problem.free() > 0;
+            trace::measure(problem, &mut path, both_ends);
+            trace::guard_residual(&mut path);
+        }
+    }
     Ok(path)
 }
 

@@ -516,4 +516,14 @@ pub struct Escalation {
     pub pivots_fx128: usize,
     /// Seconds of the `fx128` run (conversion and splicing included).
     pub seconds_fx128: f64,
+    /// The last part was traced in exact arithmetic
+    /// ([`crate::Settings::escalate_exact`]) from `lambda_exact`.
+    pub exact: bool,
+    /// Where the exact part starts (the start of a kept segment, or `lambda0`).
+    pub lambda_exact: f64,
+    /// Why no exact continuation ran where one was asked for (empty otherwise).
+    pub exact_note: String,
+    /// The precision that produced each segment of the path (`f32`, `f64`,
+    /// `f128`, `exact`), in the order of `Path::segments`.
+    pub segment_precisions: Vec<&'static str>,
 }

@@ -118,6 +118,12 @@ pub struct Settings<T: Scalar> {
     /// each precision. See [`crate::Escalation`]. No effect in `fx128`.
     /// Default `false`.
     pub escalate: bool,
+    /// With `escalate`: a path still `ill_conditioned` after `fx128` (or in
+    /// `fx128` itself) is continued in exact rational arithmetic
+    /// ([`crate::exact::trace_from`]) from the last segment whose basis is
+    /// exactly feasible, if its order `p + n` is at most
+    /// [`crate::tolerance::ESCALATE_EXACT_MAX_DIM`]. Default `false`.
+    pub escalate_exact: bool,
     /// Threads for the large products of the block basis (its refactorisation
     /// and the flush of pending updates). `Some(1)`: the calling thread only;
     /// `Some(k)`: up to `k` threads of rayon's pool; `None` (default): by size,
@@ -159,6 +165,7 @@ impl<T: Scalar> Default for Settings<T> {
             basis: BasisKind::Block,
             warm_basis: None,
             escalate: false,
+            escalate_exact: false,
             threads: None,
         }
     }

@@ -42,6 +42,13 @@ use crate::scalar::Scalar;
 /// `cond * eps = 8.8e-7` (traced right in f64), so that stays in f64.
 pub const ESCALATE_COND_EPS: f64 = 1e-5;
 
+/// The largest order `p + n` continued in exact arithmetic by
+/// [`crate::Settings::escalate_exact`]: the exact tracer solves each basis
+/// from scratch in big integers (dense `n = 100` certifies in about a second,
+/// `n = 200` in tens of seconds, `docs/certification.md`), so larger paths stay
+/// `ill_conditioned` with a note rather than take minutes unasked.
+pub const ESCALATE_EXACT_MAX_DIM: usize = 200;
+
 /// Entries of a row of `B^{-1}` (sparse basis, lexicographic rule) below this
 /// many `eps` times the row's largest entry are rounding noise, zeros of the
 /// exact inverse.

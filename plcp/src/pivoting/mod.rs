@@ -17,7 +17,7 @@
 /// The pivot tolerance relative to the z/w rows (see `ratio_test`): off.
 const PIVOT_TOL_ON_COMP_ROWS: bool = false;
 /// The covering vector brought to the right-hand side's power of two: off.
-const SCALE_COVERING: bool = false;
+const SCALE_COVERING: bool = true;
 
 mod free;
 mod phases;

@@ -52,8 +52,8 @@ pub(crate) fn start_phase<T: Scalar>(
     let cunit = T::from_f64(crate::scaling::exp2i(
         crate::scaling::exponent(scale.to_f64()) - crate::scaling::exponent(cmax.to_f64()),
     ));
-    // (the power of two is switched off: it let Siconos enum_fails in f32
-    // trace to `reached` with error 1.04; see `scaling` on defect 7)
+    // (`solve_lcp` traces the equilibrated problem: unscaled, this power of
+    // two let Siconos enum_fails in f32 trace to `reached` with error 1.04)
     let cunit = if SCALE_COVERING { cunit } else { T::one() };
     let c = |i: usize| covering.map_or(T::one(), |c| c[i]) * cunit;
     let tol = eng.tie_tol_value() * scale * T::from_f64(dim.max(1) as f64);
