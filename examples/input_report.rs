@@ -68,7 +68,9 @@ fn run() -> Result<(), String> {
     let text = std::fs::read_to_string(&file).map_err(|e| e.to_string())?;
     let mut value: serde_json::Value = serde_json::from_str(&text).map_err(|e| e.to_string())?;
     let m = problem.m();
-    let column_major: Vec<f64> = (0..n).flat_map(|j| (0..n).map(move |i| m[(i, j)])).collect();
+    let column_major: Vec<f64> = (0..n)
+        .flat_map(|j| (0..n).map(move |i| m[(i, j)]))
+        .collect();
     let mut mtx = Vec::new();
     plcp::io::mtx::write_mtx_dense(&mut mtx, n, n, &column_major).map_err(|e| e.to_string())?;
     std::fs::write(dir.join("m.mtx"), &mtx).map_err(|e| e.to_string())?;
@@ -107,7 +109,14 @@ fn run() -> Result<(), String> {
             for _ in 0..reps {
                 let start = Instant::now();
                 let out = Command::new(&plcp)
-                    .args(["solve", "--quiet", "--threads", &threads, "--segments", segments])
+                    .args([
+                        "solve",
+                        "--quiet",
+                        "--threads",
+                        &threads,
+                        "--segments",
+                        segments,
+                    ])
                     .arg(f)
                     .stderr(Stdio::inherit())
                     .output()
