@@ -70,6 +70,7 @@ pub mod model;
 pub mod plot;
 pub mod report;
 pub mod response;
+pub mod section_forces;
 pub mod solve;
 pub mod space;
 pub mod stress;

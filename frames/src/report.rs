@@ -607,12 +607,14 @@ impl Analysis {
                     .iter()
                     .filter(|_| with_moments)
                     .map(|p| {
-                        json!({
+                        let mut o = json!({
                             "lambda_from": num(p.lambda_from),
                             "lambda_to": num(p.lambda_to),
                             "moments": self.member_moments(|k| p.moments[k]),
                             "second_forces": self.member_second_forces(&self.solution.pieces[p.piece], None),
-                        })
+                        });
+                        self.add_space_forces(&mut o, &self.solution.pieces[p.piece], None);
+                        o
                     })
                     .collect();
                 let (moments, second_forces) = match pieces.as_slice() {
@@ -642,7 +644,12 @@ impl Analysis {
             .enumerate()
             .filter(move |(k, _)| diagram_sel.binary_search(k).is_ok())
             .map(|(_, x)| x)
-            .map(|(d, iv)| json!({"lambda": num(d.lambda), "members": self.member_moments(|k| d.moments[k]), "second_forces": self.member_second_forces(&self.solution.pieces[iv.piece_at(d.lambda)], Some(d.lambda))}))
+            .map(|(d, iv)| {
+                let piece = &self.solution.pieces[iv.piece_at(d.lambda)];
+                let mut o = json!({"lambda": num(d.lambda), "members": self.member_moments(|k| d.moments[k]), "second_forces": self.member_second_forces(piece, Some(d.lambda))});
+                self.add_space_forces(&mut o, piece, Some((d.lambda, &d.moments)));
+                o
+            })
         });
         let t = &self.response.time;
         let mut nodes = Map::new();
@@ -681,7 +688,7 @@ impl Analysis {
             ("conventions", Part::Value(json!(match fr.model {
                 crate::model::Model::Planar => "bending moments sagging-positive in each element's axes (local y = member direction turned 90 degrees counter-clockwise); sign of a section = sign of its moment at yield (for a facet of a yield polygon: the sign of the normal's bending component; the facet and its unit normal in (M/Mp, N/Np) are given); end = end of the element the section sits at; affine values are [base, slope] with value = base + slope * lambda",
                 crate::model::Model::Grillage => "grillage in the x-y plane: z translation, right-handed rotations rx, ry; element axes x' along the member, y' turned 90 degrees counter-clockwise; bending moment about y' dual to the hinge rotation (from end: -(theta_a - psi), to end: theta_b - psi, psi = -(w_b - w_a)/h), torque right-handed about x'; each yield mode is a facet of the inscribed polygon in (M/Mp, T/Tp), given with its unit normal; sign = sign of the normal's bending component; affine values are [base, slope] with value = base + slope * lambda",
-                crate::model::Model::Space => "space frame in global axes: translations x, y, z, right-handed rotations rx, ry, rz; element axes e1 along the member, e3 from its orientation (default z), e2 = e3 x e1; the moment about e3 (as the planar one: from end -(e3.th_a - e2.du/h), to end e3.th_b - e2.du/h) and about e2 (as the grillage's: from end -(e2.th_a + e3.du/h), to end e2.th_b + e3.du/h), the torque about e1; each yield mode is a facet of the inscribed polyhedron in (M2/Mp, M3/Mp, T/Tp), given with its unit normal (normal3); affine values are [base, slope] with value = base + slope * lambda",
+                crate::model::Model::Space => "space frame in global axes: translations x, y, z, right-handed rotations rx, ry, rz; element axes e1 along the member, e3 from its orientation (default z), e2 = e3 x e1; the moment about e3 (as the planar one: from end -(e3.th_a - e2.du/h), to end e3.th_b - e2.du/h) and about e2 (as the grillage's: from end -(e2.th_a + e3.du/h), to end e2.th_b + e3.du/h), the torque about e1; each yield mode is a facet of the inscribed polyhedron in (M2/Mp, M3/Mp, T/Tp), given with its unit normal (normal3); moment distributions give M3 (members), M2 (m2), the bending magnitude sqrt(M2^2 + M3^2) (bending: what meets the yield surface; at breakpoints only), the torques (second_forces) and the axial forces (axial_forces, tension positive) per element; affine values are [base, slope] with value = base + slope * lambda",
             }))),
             ("breakpoints", breakpoints),
             ("hinges", Part::Value(json!(hinges))),
@@ -720,6 +727,49 @@ impl Analysis {
             );
         }
         Value::Object(out)
+    }
+
+    /// A general space scene's other section forces, added to a moment
+    /// distribution `o` (keys `m2`, `bending`, `axial_forces`; see
+    /// [`crate::section_forces`]): at a breakpoint (`at = (lambda, M3 of
+    /// every section)`) their values, on a piece (`at = None`) `M2` and the
+    /// axial forces as affine `[base, slope]` (the magnitude is not affine).
+    /// Planar and grillage scenes get nothing.
+    fn add_space_forces(
+        &self,
+        o: &mut Value,
+        piece: &crate::solve::Piece,
+        at: Option<(f64, &[f64])>,
+    ) {
+        let Some(sf) =
+            crate::section_forces::SpaceForces::new(&self.system, self.scene.frame.elements.len())
+        else {
+            return;
+        };
+        let fr = &self.scene.frame;
+        let per_element = |value: &dyn Fn(usize) -> Value| -> Value {
+            let mut out = Map::new();
+            for m in &fr.members {
+                out.insert(
+                    m.id.clone(),
+                    Value::Array(m.elements.clone().map(value).collect()),
+                );
+            }
+            Value::Object(out)
+        };
+        match at {
+            Some((lambda, m3)) => {
+                let u = piece.u(lambda);
+                o["m2"] = self.member_moments(|k| sf.m2(&u, k));
+                o["bending"] = self.member_moments(|k| sf.bending(&u, k, m3[k]));
+                o["axial_forces"] = per_element(&|e| json!(sf.axial(&u, e)));
+            }
+            None => {
+                let (u0, du) = (piece.u(0.0), &piece.du);
+                o["m2"] = self.member_moments(|k| [sf.m2(&u0, k), sf.m2(du, k)]);
+                o["axial_forces"] = per_element(&|e| json!([sf.axial(&u0, e), sf.axial(du, e)]));
+            }
+        }
     }
 
     /// Per member: the axial force or torque of each element (affine `[base,
