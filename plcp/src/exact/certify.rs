@@ -16,6 +16,18 @@
 //!    `L_max` in `I_k`), or `+inf` for an unbounded ray (which needs `I_k`
 //!    unbounded above).
 //!
+//! Where the float path steps over events closer than its rounding (two
+//! variables reaching zero `1e-16` apart, taken as one degenerate breakpoint
+//! with two pivots), `E_{k-1}` lies just outside `I_k`. The certificate then
+//! follows the exact path from `S_{k-1}` at `E_{k-1}` by complementary pivots
+//! (the variable reaching zero leaves, its complement enters) until it
+//! reaches `S_k` inside `I_k`: a *bridge* of exact bases, each feasible on
+//! its exact interval. A bridge is accepted only if it is unique at every
+//! step (one variable reaching zero), at most [`MAX_BRIDGE`] bases, and
+//! spans at most `sqrt(eps)` relative to `max(1, |L|)` (the float path's
+//! trust level: a longer span is a segment the float path missed, and the
+//! certificate fails). [`Certificate::bridges`] counts the bases inserted.
+//!
 //! Then for every `L` in `[L0, E_last]` some `S_k` gives an exact solution,
 //! complementary since the non-basic member of each pair is zero: the path's
 //! claim holds exactly, whatever rounding its floats carry. Free variables
@@ -60,6 +72,14 @@ pub struct Certificate {
     pub pivots: usize,
     /// Bases solved by p-adic lifting ([`Engine::Modular`]).
     pub modular: usize,
+    /// Exact bases inserted between two segments where the float path
+    /// stepped over events closer than its rounding (see the module
+    /// documentation); 0 when every segment starts where the previous one
+    /// ends exactly.
+    pub bridges: usize,
+    /// The largest span of a bridge, relative to `max(1, |L|)` (0 without
+    /// bridges).
+    pub bridge_span: f64,
     /// Wall-clock seconds.
     pub seconds: f64,
 }
@@ -73,14 +93,26 @@ impl Certificate {
     pub fn summary(&self) -> String {
         match &self.failure {
             None => format!(
-                "certified: {} segments, exact breakpoints [{}], largest relative difference of the float breakpoints {:.1e}, {:.3} s",
+                "certified: {} segments{}, exact breakpoints [{}], largest relative difference of the float breakpoints {:.1e}, {:.3} s",
                 self.segments,
+                self.bridge_note(),
                 self.breakpoints.iter().map(short).collect::<Vec<_>>().join(", "),
                 self.max_rel_diff,
                 self.seconds
             ),
             Some(f) => format!("rejected at segment {}: {}", f.segment, f.reason),
         }
+    }
+    /// ` (with 2 exact bases bridging events the float path took as one,
+    /// spans up to 3.5e-16)`, or empty without bridges.
+    pub fn bridge_note(&self) -> String {
+        if self.bridges == 0 {
+            return String::new();
+        }
+        format!(
+            " (with {} exact bases bridging events the float path took as one, spans up to {:.1e})",
+            self.bridges, self.bridge_span
+        )
     }
     /// As JSON: `{"certified", "failure": {"segment", "reason"} or null,
     /// "breakpoints": ["4", "13/3", ...], "breakpoints_f64": [...],
@@ -98,6 +130,8 @@ impl Certificate {
             "segments": self.segments,
             "pivots": self.pivots,
             "modular": self.modular,
+            "bridges": self.bridges,
+            "bridge_span": self.bridge_span,
             "seconds": self.seconds,
         })
     }
@@ -343,6 +377,100 @@ fn value_at(t: &Solution, v: Var, lambda: &BigRational) -> BigRational {
     }
 }
 
+/// The most exact bases a bridge may insert between two segments.
+pub const MAX_BRIDGE: usize = 8;
+
+/// The exact solution of the basis `target` (columns of the tableau): a
+/// square basis by p-adic lifting; else (an artificial left in a dependent
+/// row, three primes dividing `det B`) on the fraction-free tableau, which
+/// handles every case.
+fn solve_basis(
+    scaled: &Scaled,
+    fresh: &Tableau,
+    tableau: &mut Option<Tableau>,
+    engine: Engine,
+    target: &[usize],
+    cert: &mut Certificate,
+    bareiss: &dyn Fn(&mut Certificate) -> (Tableau, usize),
+) -> Solution {
+    let modular = match engine {
+        Engine::Modular => Solution::modular(scaled, fresh, target),
+        Engine::Bareiss => None,
+    };
+    match modular {
+        Some(s) => {
+            cert.modular += 1;
+            s
+        }
+        None => {
+            let t = tableau.get_or_insert_with(|| bareiss(cert).0);
+            pivot_to(t, target, &mut cert.pivots);
+            Solution::from_tableau(t)
+        }
+    }
+}
+
+/// The exact path from basis `from` at `start` (where `from`'s interval
+/// ends as `L` rises) to basis `to`, by complementary pivots: at each step
+/// the one basic `z` or `w` that reaches zero there leaves and its
+/// complement enters, and the new basis must be feasible where the step
+/// starts. Returns the number of bases inserted and where `to` takes over,
+/// or `None` (no bridge: the caller reports the gap) when a step is not
+/// unique, a basis is singular or infeasible there, the span exceeds
+/// `limit` relative to `max(1, |start|)`, or [`MAX_BRIDGE`] bases do not
+/// reach `to`.
+fn bridge(
+    from: &[usize],
+    to: &[usize],
+    start: &BigRational,
+    limit: f64,
+    solve: &mut dyn FnMut(&[usize], &mut Certificate) -> Solution,
+    cert: &mut Certificate,
+) -> Option<(usize, BigRational)> {
+    let same = |a: &[usize], b: &[usize]| {
+        let (mut a, mut b) = (a.to_vec(), b.to_vec());
+        a.sort_unstable();
+        b.sort_unstable();
+        a == b
+    };
+    let scale = rational_to_f64(start).abs().max(1.0);
+    let (mut cur, mut at) = (from.to_vec(), start.clone());
+    let mut s = solve(&cur, cert);
+    for step in 0..=MAX_BRIDGE {
+        // the basic z or w that reaches zero at `at` as L rises
+        let mut leaving = (0..s.basis.len()).filter(|&i| {
+            let c = s.basis[i];
+            c < s.ncol() && s.signed(c) && {
+                let (a, b) = s.affine(i);
+                b.is_negative() && (a + b * &at).is_zero()
+            }
+        });
+        let (Some(i), None) = (leaving.next(), leaving.next()) else {
+            return None;
+        };
+        let out = s.basis[i];
+        let into = s.var_of(out)?.complement().and_then(|v| s.col_of(v))?;
+        let pos = cur.iter().position(|&c| c == out)?;
+        cur[pos] = into;
+        s = solve(&cur, cert);
+        if !s.is_basic(into) {
+            return None; // singular: the complement cannot enter
+        }
+        let (lo, hi) = interval(&s).ok()?;
+        if lo.as_ref().is_some_and(|l| l > &at) || hi.as_ref().is_some_and(|h| h < &at) {
+            return None;
+        }
+        if same(&cur, to) {
+            return Some((step, at));
+        }
+        at = hi?;
+        if !within(rational_to_f64(&(&at - start)).abs() / scale, limit) {
+            return None;
+        }
+    }
+    None
+}
+
 fn run<T: Scalar>(
     problem: &Plcp<T>,
     path: &Path<T>,
@@ -374,6 +502,8 @@ fn run<T: Scalar>(
     let fail = |segment: usize, reason: String| Failure { segment, reason };
     let lambda_max = path.lambda_max.map(to_rational);
     let mut start = to_rational(path.lambda0);
+    // the basis (columns) of the last certified segment
+    let mut prev_target: Option<Vec<usize>> = None;
     let nseg = path.segments.len();
     if nseg == 0 {
         // a path without segments claims a solution at L0 only: certify the
@@ -434,27 +564,41 @@ fn run<T: Scalar>(
             .map(|v| col_of(p, n, *v).expect("checked"))
             .chain((0..p).filter(|_| all_u))
             .collect();
-        // a square basis by p-adic lifting; else (an artificial left in a
-        // dependent row, three primes dividing det B) on the
-        // tableau, which handles every case
-        let modular = match engine {
-            Engine::Modular => Solution::modular(&scaled, &fresh, &target),
-            Engine::Bareiss => None,
+        let mut solve = |target: &[usize], cert: &mut Certificate| {
+            solve_basis(
+                &scaled,
+                &fresh,
+                &mut tableau,
+                engine,
+                target,
+                cert,
+                &bareiss,
+            )
         };
-        let t = match modular {
-            Some(s) => {
-                cert.modular += 1;
-                s
-            }
-            None => {
-                let t = tableau.get_or_insert_with(|| bareiss(cert).0);
-                pivot_to(t, &target, &mut cert.pivots);
-                Solution::from_tableau(t)
-            }
-        };
-        let start_k = start.clone();
-        // 2. feasible where it starts
+        let t = solve(&target, cert);
+        // 2. feasible where it starts, directly or across a bridge of exact
+        // bases from the previous segment's
         let (lo, hi) = interval(&t).map_err(|r| fail(k, r))?;
+        let outside = |start: &BigRational| {
+            lo.as_ref().is_some_and(|l| l > start) || hi.as_ref().is_some_and(|h| h < start)
+        };
+        let up = seg.lambda_to >= seg.lambda_from;
+        if outside(&start) && up {
+            if let Some(prev) = &prev_target {
+                if let Some((bases, at)) =
+                    bridge(prev, &target, &start, limit, &mut |b, c| solve(b, c), cert)
+                {
+                    if !outside(&at) {
+                        let span = rational_to_f64(&(&at - &start)).abs()
+                            / rational_to_f64(&start).abs().max(1.0);
+                        cert.bridges += bases;
+                        cert.bridge_span = cert.bridge_span.max(span);
+                        start = at;
+                    }
+                }
+            }
+        }
+        let start_k = start.clone();
         let below = lo.as_ref().is_some_and(|l| l > &start);
         let above = hi.as_ref().is_some_and(|h| h < &start);
         if below || above {
@@ -482,7 +626,6 @@ fn run<T: Scalar>(
             ));
         }
         // 3. where it ends
-        let up = seg.lambda_to >= seg.lambda_from;
         let last = k + 1 == nseg;
         let end_float = seg.lambda_to.to_f64();
         let end = if seg.unbounded {
@@ -567,6 +710,7 @@ fn run<T: Scalar>(
         // the float values at both ends (slopes for an unbounded segment)
         check_values(&t, seg, &start_k, end.as_ref(), u_unique, limit).map_err(|r| fail(k, r))?;
         cert.segments += 1;
+        prev_target = Some(target);
     }
     // the end the status claims
     let last = path.segments.last().expect("nseg > 0");
