@@ -72,6 +72,7 @@ pub mod report;
 pub mod response;
 pub mod solve;
 pub mod space;
+pub mod stream;
 pub mod stress;
 pub mod target;
 pub mod timestep;
