@@ -226,3 +226,18 @@ fn two_passes_give_the_reports_of_the_whole_analysis() {
         }
     }
 }
+
+/// Where the two passes do not apply (here: a small system on the dense
+/// route), `frames::stream::run` runs the whole analysis.
+#[test]
+fn two_passes_fall_back_to_the_whole_analysis() {
+    let file = concat!(env!("CARGO_MANIFEST_DIR"), "/../scenes/cantilever.toml");
+    let scene = Scene::from_file(file).unwrap();
+    let options = AnalysisOptions::default();
+    let whole = Analysis::run(scene.clone(), &options).unwrap();
+    assert!(!frames::stream::applies(&scene, &whole.system, &options));
+    let lean = frames::stream::run(scene, &options, None, None, None).unwrap();
+    assert!(lean.response.nodes.is_none());
+    assert_eq!(lean.to_text(), whole.to_text());
+    assert_eq!(lean.solution.pieces, whole.solution.pieces);
+}
