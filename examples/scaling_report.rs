@@ -38,6 +38,37 @@ fn cantilever_toml(n: usize) -> String {
 /// (seconds, peak resident MB, output bytes, the first line of the output)
 /// and prints the user time and the load average to stderr (wall time on a
 /// shared machine is several times the CPU time).
+/// The `j`-th breakpoint of the lumped cantilever of `n` elements (length 1,
+/// `m = 1` per length lumped `h` at the interior nodes and `h/2` at the tip,
+/// `Mp = 1`, tip load `Lambda`): the static collapse load 1, then (`j >= 1`)
+/// the hinge travelling from node `k = j - 1` to `k + 1`, when the moment at
+/// `k + 1` reaches `Mp` while the part beyond `k` rotates about it:
+///
+/// ```text
+/// alpha I = Lambda (1 - x_k) - Mp,   Lambda (1 - x_{k+1}) - alpha J = Mp
+/// I = sum_{i>k} m_i (x_i - x_k)^2,   J = sum_{i>k+1} m_i (x_i - x_k)(x_i - x_{k+1})
+/// ```
+///
+/// so `Lambda = (I - J) / ((1 - x_{k+1}) I - (1 - x_k) J)`, evaluated in
+/// integers (with `N = n - k`, `I - J = h^3 (N(N-1)/2 + N/2)`): exact but for
+/// the final division.
+fn closed_form(n: usize, j: usize) -> f64 {
+    if j == 0 {
+        return 1.0;
+    }
+    let big_n = (n - (j - 1)) as i128;
+    let m = big_n - 1;
+    let s1 = m * (m + 1) / 2;
+    let s2 = m * (m + 1) * (2 * m + 1) / 6;
+    // in units of h^3, times 2: I, J, I - J
+    let i2 = 2 * s2 + big_n * big_n;
+    let j2 = 2 * (s2 - s1) + big_n * (big_n - 1);
+    let num = i2 - j2;
+    // (1 - x_{k+1}) I - (1 - x_k) J in units of h^4, times 2
+    let den = (big_n - 1) * i2 - big_n * j2;
+    n as f64 * num as f64 / den as f64
+}
+
 fn measure(cmd: &[&str], out: &Path) -> Result<(f64, f64, u64, String), String> {
     let times = out.with_extension("time");
     let status = Command::new("/usr/bin/time")
@@ -180,8 +211,8 @@ fn main() -> Result<(), String> {
     let obstacle = target.join("examples/obstacle");
     let dir = std::env::temp_dir().join("plcp-scaling-report");
     std::fs::create_dir_all(&dir).map_err(|e| e.to_string())?;
-    println!("| case | n | wall s | peak resident MB | output MB | status |");
-    println!("|---|---|---|---|---|---|");
+    println!("| case | n | wall s | peak resident MB | output MB | status | breakpoints against the closed form |");
+    println!("|---|---|---|---|---|---|---|");
     for n in cant {
         let scene = dir.join(format!("cantilever{n}.toml"));
         std::fs::write(&scene, cantilever_toml(n)).map_err(|e| e.to_string())?;
@@ -200,11 +231,24 @@ fn main() -> Result<(), String> {
         let doc: serde_json::Value =
             serde_json::from_str(&std::fs::read_to_string(&out).map_err(|e| e.to_string())?)
                 .map_err(|e| e.to_string())?;
+        let bps: Vec<f64> = doc["breakpoints"]
+            .as_array()
+            .map(|b| b.iter().filter_map(|b| b["lambda"].as_f64()).collect())
+            .unwrap_or_default();
+        let worst = bps
+            .iter()
+            .enumerate()
+            .map(|(j, &l)| {
+                let exact = closed_form(n, j);
+                (l - exact).abs() / exact
+            })
+            .fold(0.0f64, f64::max);
         println!(
-            "| cantilever `frames run --json --lambda-max 12` | {n} elements | {s:.2} | {mb:.0} | {:.1} | {}, {} pivots |",
+            "| cantilever `frames run --json --lambda-max 12` | {n} elements | {s:.2} | {mb:.0} | {:.1} | {}, {} pivots | {} breakpoints, worst relative difference {worst:.1e} |",
             bytes as f64 / 1e6,
             doc["status"].as_str().unwrap_or("?"),
-            doc["solver"]["pivots"]
+            doc["solver"]["pivots"],
+            bps.len()
         );
     }
     for case in obst {

@@ -302,237 +302,341 @@ fn stress_unique(system: &System, pinned: &[usize]) -> bool {
 /// Where the stress is not unique and a section that has flowed appears off
 /// yield, asks whether some admissible stress state keeps every flowed section
 /// at yield ([`crate::stress`]); if so, the section is read as at yield (a
-/// choice of the solver, not a deactivation).
+/// choice of the solver, not a deactivation). One entry of the reading's view
+/// at a time: `flowed` holds, per section, the mode it last accelerated on
+/// over the entries so far (updated here with this one's).
 fn restore_yield(
     system: &System,
-    pieces: &[Piece],
-    view: &[(usize, f64, f64)],
-    states: &mut [State],
+    piece: &Piece,
+    (from, to): (f64, f64),
+    flowed: &mut [Option<usize>],
+    state: &mut State,
 ) {
     let ns = system.sections.len();
     let nb = system.coordinates.len();
-    let mut flowed: Vec<Option<usize>> = vec![None; ns];
-    for (k, &(pk, from, to)) in view.iter().enumerate() {
-        for (f, a) in flowed.iter_mut().zip(&states[k].acc_mode) {
-            if a.is_some() {
-                *f = *a;
-            }
+    for (f, a) in flowed.iter_mut().zip(&state.acc_mode) {
+        if a.is_some() {
+            *f = *a;
         }
-        if states[k].unique {
-            continue;
-        }
-        let lost: Vec<usize> = (0..ns)
-            .filter(|&s| flowed[s].is_some() && states[k].yield_mode[s].is_none())
+    }
+    if state.unique {
+        return;
+    }
+    let lost: Vec<usize> = (0..ns)
+        .filter(|&s| flowed[s].is_some() && state.yield_mode[s].is_none())
+        .collect();
+    if lost.is_empty() {
+        return;
+    }
+    let pinned: Vec<usize> = flowed.iter().flatten().copied().collect();
+    let rep = piece.representative();
+    let lambdas: Vec<f64> = if to.is_finite() {
+        vec![from, to]
+    } else {
+        vec![from, rep, 2.0 * rep]
+    };
+    let ok = lambdas.iter().all(|&l| {
+        let u = piece.u(l);
+        let rhs: Vec<f64> = (0..nb)
+            .map(|j| system.load[j] * l - system.mass[j] * u[j])
             .collect();
-        if lost.is_empty() {
-            continue;
-        }
-        let pinned: Vec<usize> = flowed.iter().flatten().copied().collect();
-        let piece = &pieces[pk];
-        let rep = piece.representative();
-        let lambdas: Vec<f64> = if to.is_finite() {
-            vec![from, to]
-        } else {
-            vec![from, rep, 2.0 * rep]
-        };
-        let ok = lambdas.iter().all(|&l| {
-            let u = piece.u(l);
-            let rhs: Vec<f64> = (0..nb)
-                .map(|j| system.load[j] * l - system.mass[j] * u[j])
-                .collect();
-            crate::stress::admissible_with(system, &rhs, &pinned) == Some(true)
-        });
-        if ok {
-            for s in lost {
-                states[k].yield_mode[s] = flowed[s];
-            }
+        crate::stress::admissible_with(system, &rhs, &pinned) == Some(true)
+    });
+    if ok {
+        for s in lost {
+            state.yield_mode[s] = flowed[s];
         }
     }
 }
 
-/// Reads the pieces of a path as hinge events.
-pub fn read(frame: &Frame, system: &System, pieces: &[Piece], tolerance: f64) -> Reading {
-    let (groups, group_of) = groups(frame, system);
-    let ns = system.sections.len();
-    // The scale of x*_dd that tells "accelerating" from round-off, per piece,
-    // relative to the piece's own scale. A piece on which the inertia forces
-    // are round-off of its equations of motion (`max_j m_j |q_dd_j| <= tol^2
-    // max_j (|L a_j| + sum_r |A_rj X_r|)`) is rigid: its x*_dd are round-off
-    // too (an indeterminate frame's rigid phase pivots with basic x*_dd of
-    // 1e-16). On a moving piece the scale is the largest |x*_dd| on the piece
-    // itself (at its ends, where an affine function peaks, and inside). A
-    // scale taken from the whole path (or a neighbour, read far away inside a
-    // long piece) hid real flow on a path whose breakpoints span decades
-    // (issue 14: x*_dd of 5e-14 at L = 1e-3 against 1e7 at L = 1e16).
+/// Whether a piece moves: the inertia forces are more than round-off of its
+/// equations of motion.
+///
+/// The scale of x*_dd that tells "accelerating" from round-off, per piece,
+/// relative to the piece's own scale. A piece on which the inertia forces
+/// are round-off of its equations of motion (`max_j m_j |q_dd_j| <= tol^2
+/// max_j (|L a_j| + sum_r |A_rj X_r|)`) is rigid: its x*_dd are round-off
+/// too (an indeterminate frame's rigid phase pivots with basic x*_dd of
+/// 1e-16). On a moving piece the scale is the largest |x*_dd| on the piece
+/// itself (at its ends, where an affine function peaks, and inside). A
+/// scale taken from the whole path (or a neighbour, read far away inside a
+/// long piece) hid real flow on a path whose breakpoints span decades
+/// (issue 14: x*_dd of 5e-14 at L = 1e-3 against 1e7 at L = 1e16).
+fn moving(system: &System, p: &Piece, tolerance: f64) -> bool {
     let nb = system.coordinates.len();
-    let moving = |p: &Piece| -> bool {
-        // at the piece's far end, where the inertia forces (zero at a
-        // breakpoint where a mechanism forms) are largest
-        let l = if p.lambda_to.is_finite() {
-            p.lambda_to
-        } else {
-            p.representative()
-        };
-        let u = p.u(l);
-        let (mut inertia, mut forces) = (0.0f64, 0.0f64);
-        for j in 0..nb {
-            inertia = inertia.max((system.mass[j] * u[j]).abs());
-            // column j of A, its stored entries in row order (the zeros
-            // added nothing): O(nnz(A)) per piece, not O(s beta)
-            let (rows, vals) = system.a.col(j);
-            let f = rows
-                .iter()
-                .zip(vals)
-                .map(|(&r, &a)| (a * u[nb + r]).abs())
-                .sum::<f64>();
-            forces = forces.max((system.load[j] * l).abs() + f);
-        }
-        // round-off of the equations of motion: `tolerance^2`, 100 eps
-        inertia > tolerance * tolerance * forces
+    // at the piece's far end, where the inertia forces (zero at a
+    // breakpoint where a mechanism forms) are largest
+    let l = if p.lambda_to.is_finite() {
+        p.lambda_to
+    } else {
+        p.representative()
     };
-    let zscale_of = |i: usize| -> f64 {
-        let p = &pieces[i];
-        if !moving(p) {
-            return f64::INFINITY;
-        }
-        let mut at = vec![p.lambda_from, p.representative()];
-        if p.lambda_to.is_finite() {
-            at.push(p.lambda_to);
-        }
-        at.iter()
-            .flat_map(|&x| p.z(x))
-            .fold(f64::MIN_POSITIVE, |a, v| a.max(v.abs()))
-    };
-    // Pieces shorter than the tolerance relative to their own `Lambda` (f32
-    // round-off, degenerate steps) are skipped: their neighbours meet at one
-    // breakpoint. (Not relative to `max(1, |L|)`: that absorbed the piece
-    // `[0, 9.08e-9]` of a frame whose first hinge forms at 9.08e-9.)
-    let mut view: Vec<(usize, f64, f64)> = Vec::new();
-    for (i, p) in pieces.iter().enumerate() {
-        let long = !p.lambda_to.is_finite()
-            || p.lambda_to - p.lambda_from > tolerance * p.lambda_from.abs().max(p.lambda_to.abs());
-        if long {
-            // the first interval starts where the path does, even when its
-            // first pieces are too short to read
-            let from = view.last().map(|v| v.2).unwrap_or(pieces[0].lambda_from);
-            view.push((i, from, p.lambda_to));
-        }
+    let u = p.u(l);
+    let (mut inertia, mut forces) = (0.0f64, 0.0f64);
+    for j in 0..nb {
+        inertia = inertia.max((system.mass[j] * u[j]).abs());
+        // column j of A, its stored entries in row order (the zeros
+        // added nothing): O(nnz(A)) per piece, not O(s beta)
+        let (rows, vals) = system.a.col(j);
+        let f = rows
+            .iter()
+            .zip(vals)
+            .map(|(&r, &a)| (a * u[nb + r]).abs())
+            .sum::<f64>();
+        forces = forces.max((system.load[j] * l).abs() + f);
     }
-    if view.is_empty() {
-        view = pieces
-            .iter()
-            .enumerate()
-            .map(|(i, p)| (i, p.lambda_from, p.lambda_to))
-            .collect();
+    // round-off of the equations of motion: `tolerance^2`, 100 eps
+    inertia > tolerance * tolerance * forces
+}
+
+/// The scale of `x*_dd` on a piece (see [`moving`]): infinite on a rigid piece.
+fn zscale(system: &System, p: &Piece, tolerance: f64) -> f64 {
+    if !moving(system, p, tolerance) {
+        return f64::INFINITY;
     }
-    let mut cache: std::collections::HashMap<Vec<usize>, bool> = std::collections::HashMap::new();
-    let mut states: Vec<State> = view
-        .iter()
-        .map(|&(i, _, _)| {
-            let p = &pieces[i];
-            let l = p.representative();
-            let (z, w) = (p.z(l), p.w(l));
-            let zscale = zscale_of(i);
-            let mut yield_mode: Vec<Option<usize>> = vec![None; ns];
-            let mut acc_mode: Vec<Option<usize>> = vec![None; ns];
-            for (k, mode) in system.modes.iter().enumerate() {
-                let s = mode.section;
-                // at a vertex of a polygon two facets are at yield: keep the
-                // one nearer yield, and the faster-accelerating one
-                let nearer = match yield_mode[s] {
-                    None => true,
-                    Some(j) => w[k] / system.capacities[k] < w[j] / system.capacities[j],
-                };
-                if w[k] <= tolerance * system.capacities[k] && nearer {
-                    yield_mode[s] = Some(k);
-                }
-                let faster = match acc_mode[s] {
-                    None => true,
-                    Some(j) => z[k] > z[j],
-                };
-                if z[k] > tolerance * zscale && faster {
-                    acc_mode[s] = Some(k);
-                }
-            }
-            let pinned: Vec<usize> = (0..system.modes.len())
-                .filter(|&k| z[k] > tolerance * zscale)
-                .collect();
-            let unique = *cache
-                .entry(pinned.clone())
-                .or_insert_with(|| stress_unique(system, &pinned));
-            State {
-                yield_mode,
-                acc_mode,
-                unique,
-                accelerating: pinned,
-            }
-        })
-        .collect();
-    restore_yield(system, pieces, &view, &mut states);
-    // (section, mode) of a group at yield / accelerating
-    type SectionMode = Option<(usize, usize)>;
-    let group_state = |st: &State, g: usize| -> (SectionMode, SectionMode) {
-        let y = groups[g]
-            .sections
-            .iter()
-            .find_map(|&k| st.yield_mode[k].map(|m| (k, m)));
-        let a = groups[g]
-            .sections
-            .iter()
-            .find_map(|&k| st.acc_mode[k].map(|m| (k, m)));
-        (y, a)
-    };
-    let sign = |m: usize| system.modes[m].sign;
-    let ng = groups.len();
-    let first_flow = states
-        .iter()
-        .position(|s| s.acc_mode.iter().any(Option::is_some));
-    let mut breakpoints = Vec::new();
-    let mut intervals = Vec::new();
-    let mut hinges = Vec::new();
-    let Some(kc) = first_flow else {
-        // rigid (or moving without hinges) over the whole traced range
-        if let (Some(first), Some(last)) = (view.first(), view.last()) {
-            intervals.push(Interval {
-                lambda_from: first.1,
-                lambda_to: last.2,
-                piece: first.0,
-                pieces: spans(&view),
-                rigid: true,
-                accelerating: vec![],
-                constant_rate: vec![],
-                at_yield: vec![],
-            });
-        }
-        return Reading {
+    let mut at = vec![p.lambda_from, p.representative()];
+    if p.lambda_to.is_finite() {
+        at.push(p.lambda_to);
+    }
+    at.iter()
+        .flat_map(|&x| p.z(x))
+        .fold(f64::MIN_POSITIVE, |a, v| a.max(v.abs()))
+}
+
+/// `(section, mode)` of a group at yield / accelerating.
+type SectionMode = Option<(usize, usize)>;
+
+/// The hinge reading as a fold over the pieces of a path, in order of rising
+/// `Lambda` ([`Reader::push`] each, then [`Reader::finish`]): what [`read`]
+/// does, with the same numbers, holding only the state of the last piece,
+/// the first piece of the current interval and the reading itself, so that
+/// a path read as it is traced ([`crate::solve`]) need not be stored.
+///
+/// A piece is read on its own (which sections are at yield and accelerate
+/// there), against its predecessor's states (the events) and against the
+/// first piece of the current interval (whether its accelerations are the
+/// same affine function). Pieces shorter than the tolerance relative to
+/// their own `Lambda` (f32 round-off, degenerate steps) are skipped: their
+/// neighbours meet at one breakpoint. (Not relative to `max(1, |L|)`: that
+/// absorbed the piece `[0, 9.08e-9]` of a frame whose first hinge forms at
+/// 9.08e-9.) If every piece is short, every piece is read.
+pub struct Reader<'a> {
+    system: &'a System,
+    tolerance: f64,
+    groups: Vec<HingeGroup>,
+    group_of: Vec<Option<usize>>,
+    /// `lambda_from` of the path's first piece.
+    start: Option<f64>,
+    /// The end of the last piece read (`None` before the first long piece).
+    last_to: Option<f64>,
+    /// The pieces before the first long one (read if none is long).
+    short: Vec<(usize, Piece)>,
+    cache: std::collections::HashMap<Vec<usize>, bool>,
+    /// Per section, the mode it last accelerated on.
+    flowed_modes: Vec<Option<usize>>,
+    /// The pieces read before the first flow `(piece, from, to)`.
+    rigid: Vec<(usize, f64, f64)>,
+    flowing: bool,
+    /// The accelerating modes of the last piece read (`None` before the first).
+    prev_accelerating: Option<Vec<usize>>,
+    reported_yield: Vec<bool>,
+    flowed: Vec<bool>,
+    started: Vec<bool>,
+    prev_acc: Vec<SectionMode>,
+    prev_yield: Vec<SectionMode>,
+    /// The first piece of the current (plastic) interval.
+    interval_piece: Option<Piece>,
+    breakpoints: Vec<EventPoint>,
+    intervals: Vec<Interval>,
+    hinges: Vec<Hinge>,
+}
+
+impl<'a> Reader<'a> {
+    /// A reading of a path of `system` (assembled from `frame`), signs read
+    /// with the relative `tolerance` ([`crate::solve::Solution::tolerance`]).
+    pub fn new(frame: &Frame, system: &'a System, tolerance: f64) -> Self {
+        let (groups, group_of) = groups(frame, system);
+        let ng = groups.len();
+        Reader {
+            system,
+            tolerance,
             groups,
             group_of,
-            breakpoints,
-            intervals,
-            hinges,
-        };
-    };
-    if kc > 0 {
-        // the path pivots inside the rigid phase of an indeterminate frame
-        // (redundant moments reaching yield): every piece up to the first flow
-        intervals.push(Interval {
-            lambda_from: view[0].1,
-            lambda_to: view[kc].1,
-            piece: view[0].0,
-            pieces: spans(&view[..kc]),
-            rigid: true,
-            accelerating: vec![],
-            constant_rate: vec![],
-            at_yield: vec![],
-        });
+            start: None,
+            last_to: None,
+            short: Vec::new(),
+            cache: std::collections::HashMap::new(),
+            flowed_modes: vec![None; system.sections.len()],
+            rigid: Vec::new(),
+            flowing: false,
+            prev_accelerating: None,
+            reported_yield: vec![false; ng],
+            flowed: vec![false; ng],
+            started: vec![false; ng],
+            prev_acc: vec![None; ng],
+            prev_yield: vec![None; ng],
+            interval_piece: None,
+            breakpoints: Vec::new(),
+            intervals: Vec::new(),
+            hinges: Vec::new(),
+        }
     }
-    let mut reported_yield = vec![false; ng];
-    let mut flowed = vec![false; ng];
-    let mut started = vec![false; ng];
-    let mut prev_acc: Vec<SectionMode> = vec![None; ng];
-    let mut prev_yield: Vec<SectionMode> = vec![None; ng];
-    for (k, &(pk, lambda, lambda_to)) in view.iter().enumerate().skip(kc) {
-        let st = &states[k];
+
+    /// Reads the next piece of the path (`index` into its pieces).
+    pub fn push(&mut self, index: usize, p: &Piece) {
+        let tolerance = self.tolerance;
+        let start = *self.start.get_or_insert(p.lambda_from);
+        let long = !p.lambda_to.is_finite()
+            || p.lambda_to - p.lambda_from > tolerance * p.lambda_from.abs().max(p.lambda_to.abs());
+        if !long {
+            if self.last_to.is_none() {
+                self.short.push((index, p.clone()));
+            }
+            return;
+        }
+        self.short = Vec::new();
+        // the first interval starts where the path does, even when its
+        // first pieces are too short to read
+        let from = self.last_to.unwrap_or(start);
+        self.last_to = Some(p.lambda_to);
+        self.entry(index, from, p.lambda_to, p);
+    }
+
+    /// The reading of the pieces pushed.
+    pub fn finish(mut self) -> Reading {
+        if self.last_to.is_none() {
+            for (i, p) in std::mem::take(&mut self.short) {
+                self.entry(i, p.lambda_from, p.lambda_to, &p);
+            }
+        }
+        if !self.flowing {
+            // rigid (or moving without hinges) over the whole traced range
+            if let (Some(first), Some(last)) = (self.rigid.first(), self.rigid.last()) {
+                self.intervals.push(Interval {
+                    lambda_from: first.1,
+                    lambda_to: last.2,
+                    piece: first.0,
+                    pieces: spans(&self.rigid),
+                    rigid: true,
+                    accelerating: vec![],
+                    constant_rate: vec![],
+                    at_yield: vec![],
+                });
+            }
+        }
+        Reading {
+            groups: self.groups,
+            group_of: self.group_of,
+            breakpoints: self.breakpoints,
+            intervals: self.intervals,
+            hinges: self.hinges,
+        }
+    }
+
+    /// The states of every section on a piece, read at an interior point.
+    fn state(&mut self, p: &Piece) -> State {
+        let system = self.system;
+        let tolerance = self.tolerance;
+        let ns = system.sections.len();
+        let l = p.representative();
+        let (z, w) = (p.z(l), p.w(l));
+        let zscale = zscale(system, p, tolerance);
+        let mut yield_mode: Vec<Option<usize>> = vec![None; ns];
+        let mut acc_mode: Vec<Option<usize>> = vec![None; ns];
+        for (k, mode) in system.modes.iter().enumerate() {
+            let s = mode.section;
+            // at a vertex of a polygon two facets are at yield: keep the
+            // one nearer yield, and the faster-accelerating one
+            let nearer = match yield_mode[s] {
+                None => true,
+                Some(j) => w[k] / system.capacities[k] < w[j] / system.capacities[j],
+            };
+            if w[k] <= tolerance * system.capacities[k] && nearer {
+                yield_mode[s] = Some(k);
+            }
+            let faster = match acc_mode[s] {
+                None => true,
+                Some(j) => z[k] > z[j],
+            };
+            if z[k] > tolerance * zscale && faster {
+                acc_mode[s] = Some(k);
+            }
+        }
+        let pinned: Vec<usize> = (0..system.modes.len())
+            .filter(|&k| z[k] > tolerance * zscale)
+            .collect();
+        let unique = *self
+            .cache
+            .entry(pinned.clone())
+            .or_insert_with(|| stress_unique(system, &pinned));
+        State {
+            yield_mode,
+            acc_mode,
+            unique,
+            accelerating: pinned,
+        }
+    }
+
+    /// Reads one entry of the view: piece `pk` on `[lambda, lambda_to]`.
+    fn entry(&mut self, pk: usize, lambda: f64, lambda_to: f64, p: &Piece) {
+        let mut st = self.state(p);
+        restore_yield(
+            self.system,
+            p,
+            (lambda, lambda_to),
+            &mut self.flowed_modes,
+            &mut st,
+        );
+        if !self.flowing {
+            if !st.acc_mode.iter().any(Option::is_some) {
+                self.rigid.push((pk, lambda, lambda_to));
+                self.prev_accelerating = Some(st.accelerating);
+                return;
+            }
+            self.flowing = true;
+            if let Some(first) = self.rigid.first() {
+                // the path pivots inside the rigid phase of an indeterminate
+                // frame (redundant moments reaching yield): every piece up to
+                // the first flow
+                self.intervals.push(Interval {
+                    lambda_from: first.1,
+                    lambda_to: lambda,
+                    piece: first.0,
+                    pieces: spans(&self.rigid),
+                    rigid: true,
+                    accelerating: vec![],
+                    constant_rate: vec![],
+                    at_yield: vec![],
+                });
+                self.rigid = Vec::new();
+            }
+        }
+        self.plastic(pk, lambda, lambda_to, p, st);
+    }
+
+    /// The events of a piece after the first flow, against its predecessor.
+    fn plastic(&mut self, pk: usize, lambda: f64, lambda_to: f64, p: &Piece, st: State) {
+        let system = self.system;
+        let groups = &self.groups;
+        let group_state = |st: &State, g: usize| -> (SectionMode, SectionMode) {
+            let y = groups[g]
+                .sections
+                .iter()
+                .find_map(|&k| st.yield_mode[k].map(|m| (k, m)));
+            let a = groups[g]
+                .sections
+                .iter()
+                .find_map(|&k| st.acc_mode[k].map(|m| (k, m)));
+            (y, a)
+        };
+        let sign = |m: usize| system.modes[m].sign;
+        let ng = groups.len();
+        let (reported_yield, flowed, started) = (
+            &mut self.reported_yield,
+            &mut self.flowed,
+            &mut self.started,
+        );
+        let (prev_acc, prev_yield) = (&self.prev_acc, &self.prev_yield);
         let mut events = Vec::new();
         let mut accelerating = Vec::new();
         let mut constant_rate = Vec::new();
@@ -540,7 +644,7 @@ pub fn read(frame: &Frame, system: &System, pieces: &[Piece], tolerance: f64) ->
         let mut now_yield = vec![None; ng];
         let mut now_acc = vec![None; ng];
         for g in 0..ng {
-            let (y, a) = group_state(st, g);
+            let (y, a) = group_state(&st, g);
             now_yield[g] = y;
             now_acc[g] = a;
             if let Some((sec, mode)) = y {
@@ -579,7 +683,7 @@ pub fn read(frame: &Frame, system: &System, pieces: &[Piece], tolerance: f64) ->
                     });
                     if !started[g] {
                         started[g] = true;
-                        hinges.push(Hinge {
+                        self.hinges.push(Hinge {
                             group: g,
                             node: groups[g].node,
                             lambda,
@@ -616,7 +720,8 @@ pub fn read(frame: &Frame, system: &System, pieces: &[Piece], tolerance: f64) ->
             EventKind::FlowStopped => 2,
             EventKind::Unloaded => 3,
         });
-        let same_mechanism = intervals
+        let same_mechanism = self
+            .intervals
             .last()
             .map(|iv: &Interval| {
                 !iv.rigid
@@ -627,19 +732,22 @@ pub fn read(frame: &Frame, system: &System, pieces: &[Piece], tolerance: f64) ->
             .unwrap_or(false);
         // the flow moving across a yield polygon (a facet starting or
         // stopping while its section flows on) is a breakpoint without events
-        let same_facets = k == 0 || states[k - 1].accelerating == st.accelerating;
+        let same_facets = self
+            .prev_accelerating
+            .as_ref()
+            .is_none_or(|a| *a == st.accelerating);
         if events.is_empty()
             && same_mechanism
             && same_facets
             && same_acceleration(
                 system,
-                &pieces[intervals.last().map(|i| i.piece).unwrap_or(pk)],
-                &pieces[pk],
-                tolerance,
+                self.interval_piece.as_ref().unwrap_or(p),
+                p,
+                self.tolerance,
             )
         {
             // nothing observable changed (a pivot on non-unique forces): extend
-            if let Some(iv) = intervals.last_mut() {
+            if let Some(iv) = self.intervals.last_mut() {
                 iv.lambda_to = lambda_to;
                 iv.pieces.push(Span {
                     piece: pk,
@@ -648,12 +756,12 @@ pub fn read(frame: &Frame, system: &System, pieces: &[Piece], tolerance: f64) ->
                 });
             }
         } else {
-            breakpoints.push(EventPoint {
+            self.breakpoints.push(EventPoint {
                 lambda,
                 events,
                 stress_unique: st.unique,
             });
-            intervals.push(Interval {
+            self.intervals.push(Interval {
                 lambda_from: lambda,
                 lambda_to,
                 piece: pk,
@@ -667,17 +775,21 @@ pub fn read(frame: &Frame, system: &System, pieces: &[Piece], tolerance: f64) ->
                 constant_rate,
                 at_yield,
             });
+            self.interval_piece = Some(p.clone());
         }
-        prev_acc = now_acc;
-        prev_yield = now_yield;
+        self.prev_acc = now_acc;
+        self.prev_yield = now_yield;
+        self.prev_accelerating = Some(st.accelerating);
     }
-    Reading {
-        groups,
-        group_of,
-        breakpoints,
-        intervals,
-        hinges,
+}
+
+/// Reads the pieces of a path as hinge events ([`Reader`] over every piece).
+pub fn read(frame: &Frame, system: &System, pieces: &[Piece], tolerance: f64) -> Reading {
+    let mut reader = Reader::new(frame, system, tolerance);
+    for (i, p) in pieces.iter().enumerate() {
+        reader.push(i, p);
     }
+    reader.finish()
 }
 
 /// The spans of a run of the reading's view `(piece, from, to)`.

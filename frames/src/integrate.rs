@@ -108,17 +108,23 @@ pub(crate) fn integrals(history: &History, ta: f64, tau: f64) -> (f64, f64) {
     }
 }
 
-/// Integrates from rest up to the largest requested time. `times` must be
-/// nonnegative; `pieces` must cover `[0, lambda(t)]` for every requested `t`
-/// (beyond the last piece its affine form is extended).
-pub fn integrate(pieces: &[AffinePiece], history: &History, times: &[f64]) -> Motion {
-    let nq = pieces.first().map(|p| p.base.len()).unwrap_or(0);
+/// The knots of the integration of accelerations affine on pieces covering
+/// `ranges` (`(lambda_from, lambda_to)` of each): every requested time, the
+/// history's knots and the times `lambda(t)` reaches a piece's start, sorted,
+/// and per window between consecutive knots the piece whose accelerations
+/// hold there (`None`: an empty window, skipped). [`integrate`] steps through
+/// them; a fold over the pieces ([`crate::stream`]) steps through the same.
+pub(crate) fn schedule(
+    ranges: &[(f64, f64)],
+    history: &History,
+    times: &[f64],
+) -> (Vec<f64>, Vec<Option<usize>>) {
     let t_end = times.iter().cloned().fold(0.0f64, f64::max);
     let mut knots: Vec<f64> = vec![0.0, t_end];
     knots.extend(times.iter().cloned());
     knots.extend(history.knots(t_end));
-    for p in pieces {
-        if let Some(t) = history.time_at(p.lambda_from) {
+    for p in ranges {
+        if let Some(t) = history.time_at(p.0) {
             if t > 0.0 && t < t_end {
                 knots.push(t);
             }
@@ -127,15 +133,53 @@ pub fn integrate(pieces: &[AffinePiece], history: &History, times: &[f64]) -> Mo
     knots.sort_by(f64::total_cmp);
     knots.dedup();
     let piece_at = |l: f64| -> usize {
-        pieces
+        ranges
             .iter()
-            .position(|p| l >= p.lambda_from && l <= p.lambda_to)
-            .unwrap_or(if pieces.is_empty() {
+            .position(|p| l >= p.0 && l <= p.1)
+            .unwrap_or(if ranges.is_empty() {
                 0
             } else {
-                pieces.len() - 1
+                ranges.len() - 1
             })
     };
+    let windows = knots
+        .windows(2)
+        .map(|w| {
+            let (ta, tb) = (w[0], w[1]);
+            (tb - ta > 0.0 && !ranges.is_empty()).then(|| piece_at(history.lambda(0.5 * (ta + tb))))
+        })
+        .collect();
+    (knots, windows)
+}
+
+/// One exact step of `(q, v)` from `ta` to `tb` under `q_dd = base + slope
+/// lambda(t)` (the history having no knot inside).
+pub(crate) fn step(
+    history: &History,
+    (ta, tb): (f64, f64),
+    (base, slope): (&[f64], &[f64]),
+    q: &mut [f64],
+    v: &mut [f64],
+) {
+    let tau = tb - ta;
+    let (i1, i2) = integrals(history, ta, tau);
+    for j in 0..q.len() {
+        let (b, s) = (base[j], slope[j]);
+        q[j] += v[j] * tau + 0.5 * b * tau * tau + s * i2;
+        v[j] += b * tau + s * i1;
+    }
+}
+
+/// Integrates from rest up to the largest requested time. `times` must be
+/// nonnegative; `pieces` must cover `[0, lambda(t)]` for every requested `t`
+/// (beyond the last piece its affine form is extended).
+pub fn integrate(pieces: &[AffinePiece], history: &History, times: &[f64]) -> Motion {
+    let nq = pieces.first().map(|p| p.base.len()).unwrap_or(0);
+    let ranges: Vec<(f64, f64)> = pieces
+        .iter()
+        .map(|p| (p.lambda_from, p.lambda_to))
+        .collect();
+    let (knots, windows) = schedule(&ranges, history, times);
     // the state is written straight into the requested times' slots (a copy
     // at every knot, kept in a map, held two more copies of the series)
     let mut slots: std::collections::HashMap<u64, Vec<usize>> = std::collections::HashMap::new();
@@ -155,20 +199,13 @@ pub fn integrate(pieces: &[AffinePiece], history: &History, times: &[f64]) -> Mo
         }
     };
     record(0.0, &q, &v);
-    for w in knots.windows(2) {
-        let (ta, tb) = (w[0], w[1]);
-        let tau = tb - ta;
-        if tau <= 0.0 || pieces.is_empty() {
+    for (w, piece) in knots.windows(2).zip(windows) {
+        let Some(piece) = piece else {
             continue;
-        }
-        let p = &pieces[piece_at(history.lambda(0.5 * (ta + tb)))];
-        let (i1, i2) = integrals(history, ta, tau);
-        for j in 0..nq {
-            let (b, s) = (p.base[j], p.slope[j]);
-            q[j] += v[j] * tau + 0.5 * b * tau * tau + s * i2;
-            v[j] += b * tau + s * i1;
-        }
-        record(tb, &q, &v);
+        };
+        let p = &pieces[piece];
+        step(history, (w[0], w[1]), (&p.base, &p.slope), &mut q, &mut v);
+        record(w[1], &q, &v);
     }
     // a time no knot reached (none: every time is a knot) reads as rest
     for (d, vv) in displacement.iter_mut().zip(velocity.iter_mut()) {

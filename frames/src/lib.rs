@@ -73,6 +73,7 @@ pub mod response;
 pub mod section_forces;
 pub mod solve;
 pub mod space;
+pub mod stream;
 pub mod stress;
 pub mod target;
 pub mod timestep;

@@ -116,8 +116,11 @@ impl OutputSelection {
     /// Everything for a small scene (at most [`SMALL_SCENE`] nodes and
     /// breakpoints); otherwise [`DEFAULT_SAMPLES`] Lambda values and nodes.
     pub fn default_for(a: &Analysis) -> Self {
-        let nodes = a.scene.frame.nodes.len();
-        let bps = a.reading.breakpoints.len();
+        Self::default_for_counts(a.scene.frame.nodes.len(), a.reading.breakpoints.len())
+    }
+    /// [`OutputSelection::default_for`] a scene of `nodes` nodes whose path
+    /// has `bps` breakpoints.
+    pub fn default_for_counts(nodes: usize, bps: usize) -> Self {
         Self {
             moments: if bps <= SMALL_SCENE && nodes <= SMALL_SCENE {
                 MomentPick::All
@@ -478,6 +481,7 @@ impl Analysis {
             .map(|d| d.lambda)
             .collect();
         let diagram_sel = sel.moment_indices(&diagram_lambdas);
+        self.check_kept(&node_sel, &interval_sel, &diagram_sel)?;
         let sys = &self.system;
         let sz = sys.sizes();
         let lo = &sys.left_out;
@@ -592,9 +596,10 @@ impl Analysis {
                 let mut acc = Map::new();
                 for &i in node_sel.iter() {
                     let n = &fr.nodes[i];
+                    let slot = self.response.slot(i).unwrap_or(i);
                     let mut o = Map::new();
                     for c in fr.model.components() {
-                        o.insert(c.as_str().into(), json!(r.accelerations[i][c.index()]));
+                        o.insert(c.as_str().into(), json!(r.accelerations[slot][c.index()]));
                     }
                     acc.insert(n.id.clone(), Value::Object(o));
                 }
@@ -655,12 +660,13 @@ impl Analysis {
         let mut nodes = Map::new();
         for &i in &node_sel {
             let n = &fr.nodes[i];
+            let slot = self.response.slot(i).unwrap_or(i);
             let series = |v: &Vec<Vec<[f64; 6]>>| {
                 let mut o = Map::new();
                 for c in fr.model.components() {
                     o.insert(
                         c.as_str().into(),
-                        json!(v.iter().map(|row| row[i][c.index()]).collect::<Vec<_>>()),
+                        json!(v.iter().map(|row| row[slot][c.index()]).collect::<Vec<_>>()),
                     );
                 }
                 Value::Object(o)
@@ -706,6 +712,35 @@ impl Analysis {
             report.insert_part(key, part);
         }
         Ok(report)
+    }
+
+    /// `Err` if the selection asks for what a large scene's analysis did not
+    /// keep ([`crate::response::Response::nodes`]: it keeps what its own selection asked for).
+    fn check_kept(
+        &self,
+        nodes: &[usize],
+        intervals: &[usize],
+        diagrams: &[usize],
+    ) -> Result<(), String> {
+        let r = &self.response;
+        if r.nodes.is_none() {
+            return Ok(());
+        }
+        let ns = self.system.sections.len();
+        let lost = nodes.iter().any(|&i| r.slot(i).is_none())
+            || intervals.iter().any(|&k| {
+                r.intervals[k]
+                    .pieces
+                    .iter()
+                    .any(|p| p.moments.len() != ns || self.solution.pieces[p.piece].du.is_empty())
+            })
+            || diagrams
+                .iter()
+                .any(|&k| r.moments_at_breakpoints[k].moments.len() != ns);
+        if lost {
+            return Err("the selection asks for nodes or moments the analysis did not keep (a large scene's analysis keeps what its own selection asked for: pass the same --moments and --nodes)".into());
+        }
+        Ok(())
     }
 
     /// Per member: `from`, `to` and `along` (`[s, value]` at every element end).
@@ -807,6 +842,9 @@ impl Analysis {
     /// `A (AB from) @124 stops, @101 starts`. A facet that stops keeps its rate
     /// in system (9), whose path cannot let a rate decrease.
     fn facet_changes(&self, lambda: f64) -> Vec<String> {
+        if self.system.modes.iter().all(|m| m.facet.is_none()) {
+            return Vec::new(); // no yield polygon
+        }
         let pieces = &self.solution.pieces;
         let ivs = &self.reading.intervals;
         let Some(k) = ivs.iter().position(|i| i.lambda_from == lambda && !i.rigid) else {
@@ -1114,13 +1152,14 @@ impl Analysis {
             );
             if massive.len() <= 8 {
                 // round-off below 1e-12 of the largest coefficient prints as 0
+                let slot = |i: usize| self.response.slot(i).unwrap_or(i);
                 let scale = massive
                     .iter()
-                    .flat_map(|&i| r.accelerations[i].iter().flatten().map(|v| v.abs()))
+                    .flat_map(|&i| r.accelerations[slot(i)].iter().flatten().map(|v| v.abs()))
                     .fold(0.0f64, f64::max);
                 let snap = |v: f64| if v.abs() <= 1e-12 * scale { 0.0 } else { v };
                 for &i in &massive {
-                    let a = r.accelerations[i];
+                    let a = r.accelerations[slot(i)];
                     let comps: Vec<String> = fr
                         .model
                         .components()
@@ -1144,13 +1183,13 @@ impl Analysis {
             let _ = writeln!(s);
             let k = t.times.len() - 1;
             let mut far = (0usize, 0.0f64);
-            for (i, d) in t.displacement[k].iter().enumerate() {
+            for (i, d) in t.end_displacement.iter().enumerate() {
                 let m = fr.model.translation_size(d);
                 if m > far.1 {
                     far = (i, m);
                 }
             }
-            let d = t.displacement[k][far.0];
+            let d = t.end_displacement[far.0];
             let what = fr
                 .model
                 .translations()

@@ -111,6 +111,10 @@ pub struct TimeResponse {
     pub displacement: Vec<Vec<[f64; 6]>>,
     /// Per time, per node, by [`crate::model::Component::index`].
     pub velocity: Vec<Vec<[f64; 6]>>,
+    /// Every node's displacement at the last time (the last row of
+    /// `displacement`, kept whole where the rows hold a selection of the
+    /// nodes: [`Response::nodes`]).
+    pub end_displacement: Vec<[f64; 6]>,
 }
 
 /// Everything the response holds.
@@ -122,9 +126,25 @@ pub struct Response {
     pub moments_at_breakpoints: Vec<MomentDiagram>,
     /// Over time.
     pub time: TimeResponse,
+    /// `None`: the node-indexed vectors (`IntervalResponse::accelerations`,
+    /// the rows of `TimeResponse::displacement` and `velocity`) hold every
+    /// node. `Some(nodes)` (a large scene's analysis, [`crate::stream`]):
+    /// they hold these nodes only, in this (rising) order; and only the
+    /// selected intervals' moment pieces and breakpoints' diagrams hold
+    /// moments (the others are empty). [`Response::slot`] finds a node.
+    pub nodes: Option<Vec<usize>>,
 }
 
 impl Response {
+    /// Where `node`'s entries sit in the node-indexed vectors (see
+    /// [`Response::nodes`]); `None` if they were not kept.
+    pub fn slot(&self, node: usize) -> Option<usize> {
+        match &self.nodes {
+            None => Some(node),
+            Some(kept) => kept.binary_search(&node).ok(),
+        }
+    }
+
     /// The bending moment of every critical section at `lambda`, from the
     /// piece of the path that holds it (at a breakpoint, the piece that starts
     /// there); `None` outside the reported intervals.
@@ -167,7 +187,7 @@ pub fn force_tolerance(solution: &Solution) -> f64 {
     solution.tolerance.max(64.0 * kappa * eps)
 }
 
-fn to_nodes(frame: &Frame, system: &System, q: &[f64]) -> Vec<[f64; 6]> {
+pub(crate) fn to_nodes(frame: &Frame, system: &System, q: &[f64]) -> Vec<[f64; 6]> {
     let mut out = vec![[0.0; 6]; frame.nodes.len()];
     for (j, c) in system.coordinates.iter().enumerate() {
         // a path that stopped early may carry fewer values than coordinates
@@ -189,7 +209,11 @@ pub fn residual_at(problem: &plcp::Plcp<f64>, piece: &Piece, lambda: f64) -> Res
 }
 
 /// The affine accelerations of an interval (zero in the rigid phase).
-fn affine_accelerations(system: &System, iv: &Interval, piece: &Piece) -> (Vec<f64>, Vec<f64>) {
+pub(crate) fn affine_accelerations(
+    system: &System,
+    iv: &Interval,
+    piece: &Piece,
+) -> (Vec<f64>, Vec<f64>) {
     let nb = system.coordinates.len();
     if iv.rigid {
         return (vec![0.0; nb], vec![0.0; nb]);
@@ -311,6 +335,10 @@ pub fn build(
         velocity,
     } = integrate(&affine_pieces, history, times);
     drop(affine_pieces);
+    let end_displacement = displacement
+        .last()
+        .map(|q| to_nodes(frame, system, q))
+        .unwrap_or_default();
     let time = TimeResponse {
         history: history.clone(),
         method: METHOD,
@@ -324,10 +352,12 @@ pub fn build(
             .into_iter()
             .map(|q| to_nodes(frame, system, &q))
             .collect(),
+        end_displacement,
     };
     Response {
         intervals,
         moments_at_breakpoints,
         time,
+        nodes: None,
     }
 }

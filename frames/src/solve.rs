@@ -205,6 +205,92 @@ fn trace_read<T: Scalar + 'static>(
     Ok(solution(run.path, pieces))
 }
 
+/// Traces system (9) in `f64` as [`solve_escalating`] does (the same
+/// settings, so the same pieces, bit for bit), handing each piece to `each`
+/// (its index, the piece) as soon as it is traced and keeping none: the
+/// solution's `pieces` is empty. `each` may stop the trace
+/// ([`Control::Stop`]: status `stopped_by_observer`). For a path that ends
+/// `ill_conditioned` or is continued in `fx128` (`info.escalation`), `each`
+/// has seen the `f64` pieces only: the caller checks and traces again
+/// whole ([`crate::stream`]).
+pub(crate) fn trace_pieces(
+    system: &System,
+    options: &SolveOptions,
+    escalate: bool,
+    watch: Option<Watch>,
+    mut each: impl FnMut(usize, Piece) -> Control,
+) -> Result<Solution, FramesError> {
+    if let Some(l) = options.lambda_max {
+        if l.is_nan() || l <= 0.0 {
+            return Err(FramesError::invalid(
+                "lambda_max",
+                format!("must be positive, got {l}"),
+            ));
+        }
+    }
+    // plcp's observer is 'static (moved into the trace): the trace runs on
+    // a thread of its own and hands the pieces over a short channel to
+    // `each`, which may borrow (two pieces in flight at most)
+    enum Msg {
+        Tick(Tick),
+        Piece(Piece),
+    }
+    let stop = std::sync::Arc::new(std::sync::atomic::AtomicBool::new(false));
+    let stopped = stop.clone();
+    std::thread::scope(|scope| {
+        let (tx, rx) = std::sync::mpsc::sync_channel::<Msg>(1);
+        let tracer = scope.spawn(move || -> Result<Solution, FramesError> {
+            let mut settings = Settings::<f64>::with_method(options.method);
+            settings.escalate = escalate;
+            let problem = if uses_sparse(system, options) {
+                settings.basis = plcp::BasisKind::Sparse;
+                system.plcp_sparse::<f64>(options.lambda_max)?
+            } else {
+                system.plcp::<f64>(options.lambda_max)?
+            };
+            let observer = move |segment: &Segment<f64>, progress: &plcp::Progress<'_, f64>| {
+                let p = piece(segment);
+                let tick = Tick {
+                    lambda: p.lambda_to,
+                    pivots: progress.pivots,
+                    breakpoints: progress.breakpoints,
+                };
+                let gone = tx.send(Msg::Tick(tick)).is_err() || tx.send(Msg::Piece(p)).is_err();
+                if gone || stopped.load(std::sync::atomic::Ordering::Relaxed) {
+                    Control::Stop
+                } else {
+                    Control::Continue
+                }
+            };
+            let run = plcp::solve_observed(&problem, &settings, observer, Keep::Nothing)?;
+            Ok(solution(run.path, Vec::new()))
+        });
+        let mut index = 0;
+        for msg in rx {
+            match msg {
+                Msg::Tick(t) => {
+                    if let Some(w) = &watch {
+                        (w.borrow_mut())(&t);
+                    }
+                }
+                Msg::Piece(p) => {
+                    if stop.load(std::sync::atomic::Ordering::Relaxed) {
+                        continue;
+                    }
+                    if matches!(each(index, p), Control::Stop) {
+                        stop.store(true, std::sync::atomic::Ordering::Relaxed);
+                    }
+                    index += 1;
+                }
+            }
+        }
+        match tracer.join() {
+            Ok(r) => r,
+            Err(panic) => std::panic::resume_unwind(panic),
+        }
+    })
+}
+
 /// Systems of at least this many unknowns (`beta + s + p`) go to plcp in
 /// sparse form with the sparse LU basis ([`System::plcp_sparse`],
 /// [`plcp::BasisKind::Sparse`]); smaller ones stay dense with the block basis.

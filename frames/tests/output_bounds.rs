@@ -8,6 +8,11 @@ use frames::report::{
 use frames::{Analysis, AnalysisOptions, Scene, SolveOptions};
 
 fn cantilever(elements: usize) -> Analysis {
+    let (scene, options) = cantilever_scene(elements);
+    Analysis::run(scene, &options).unwrap()
+}
+
+fn cantilever_scene(elements: usize) -> (Scene, AnalysisOptions) {
     let src = format!(
         r#"
 title = "uniform cantilever"
@@ -45,7 +50,7 @@ rate = 1.0
         },
         ..AnalysisOptions::default()
     };
-    Analysis::run(scene, &options).unwrap()
+    (scene, options)
 }
 
 fn count(doc: &serde_json::Value) -> (usize, usize, usize, usize) {
@@ -155,4 +160,84 @@ fn streamed_json_equals_the_document_built_whole() {
         // written twice, the same (every lazy part starts over)
         assert_eq!(serde_json::to_vec(&report).unwrap(), streamed);
     }
+}
+
+/// A large scene analysed in two passes (`frames::stream`, what `frames run`
+/// does above 200 nodes) gives the reports of the analysis that keeps every
+/// piece, byte for byte, for the selection it was asked for (the default, a
+/// count, a list of Lambda values, node ids, everything); a selection asking
+/// for more than it kept is an `Err`, and it keeps only the selected pieces.
+#[test]
+fn two_passes_give_the_reports_of_the_whole_analysis() {
+    let (scene, options) = cantilever_scene(SMALL_SCENE + 50);
+    let whole = Analysis::run(scene.clone(), &options).unwrap();
+    assert!(frames::stream::applies(&scene, &whole.system, &options));
+    let default = OutputSelection::default_for(&whole);
+    let picks = [
+        (None, None, default.clone()),
+        (
+            Some(MomentPick::Count(3)),
+            Some(NodePick::Ids(vec!["B".into(), "A".into()])),
+            OutputSelection {
+                moments: MomentPick::Count(3),
+                nodes: NodePick::Ids(vec!["B".into(), "A".into()]),
+            },
+        ),
+        (
+            Some(MomentPick::At(vec![4.0, 6.5])),
+            Some(NodePick::Count(7)),
+            OutputSelection {
+                moments: MomentPick::At(vec![4.0, 6.5]),
+                nodes: NodePick::Count(7),
+            },
+        ),
+        (
+            Some(MomentPick::All),
+            Some(NodePick::All),
+            OutputSelection::all(),
+        ),
+    ];
+    let json = |a: &Analysis, sel: &OutputSelection| {
+        serde_json::to_string(&a.json_report(sel).unwrap()).unwrap()
+    };
+    for (moments, nodes, sel) in picks {
+        let what = format!("{sel:?}");
+        let lean = frames::stream::run(scene.clone(), &options, moments, nodes, None).unwrap();
+        assert!(
+            lean.response.nodes.is_some(),
+            "{what}: not analysed in two passes"
+        );
+        assert_eq!(lean.to_text(), whole.to_text(), "{what}");
+        assert_eq!(json(&lean, &sel), json(&whole, &sel), "{what}");
+        assert_eq!(lean.reading, whole.reading, "{what}");
+        let kept = lean
+            .solution
+            .pieces
+            .iter()
+            .filter(|p| !p.du.is_empty())
+            .count();
+        if sel != OutputSelection::all() {
+            assert!(
+                kept < whole.solution.pieces.len() / 4,
+                "{what}: kept {kept} of {} pieces",
+                whole.solution.pieces.len()
+            );
+            assert!(lean.json_report(&OutputSelection::all()).is_err(), "{what}");
+        }
+    }
+}
+
+/// Where the two passes do not apply (here: a small system on the dense
+/// route), `frames::stream::run` runs the whole analysis.
+#[test]
+fn two_passes_fall_back_to_the_whole_analysis() {
+    let file = concat!(env!("CARGO_MANIFEST_DIR"), "/../scenes/cantilever.toml");
+    let scene = Scene::from_file(file).unwrap();
+    let options = AnalysisOptions::default();
+    let whole = Analysis::run(scene.clone(), &options).unwrap();
+    assert!(!frames::stream::applies(&scene, &whole.system, &options));
+    let lean = frames::stream::run(scene, &options, None, None, None).unwrap();
+    assert!(lean.response.nodes.is_none());
+    assert_eq!(lean.to_text(), whole.to_text());
+    assert_eq!(lean.solution.pieces, whole.solution.pieces);
 }

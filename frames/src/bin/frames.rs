@@ -191,7 +191,15 @@ fn run(cli: Cli) -> Result<(), FramesError> {
                     }));
                 w
             });
-            let mut analysis = Analysis::run_watched(scene, &options, watch)?;
+            // a large scene without plots or time stepping: in two passes
+            // over the path, keeping what the report asks for (memory linear
+            // in the structure; frames::stream)
+            let large = scene.frame.nodes.len() > frames::report::SMALL_SCENE;
+            let mut analysis = if large && plots.is_none() && !timestep_after {
+                frames::stream::run(scene, &options, moments.clone(), nodes.clone(), watch)?
+            } else {
+                Analysis::run_watched(scene, &options, watch)?
+            };
             progress.finish();
             let valid = frames::timestep::plcp_valid_until(&analysis);
             if let Some((lambda, t)) = valid {

@@ -1,0 +1,423 @@
+//! A large scene's analysis in memory linear in the structure: two passes
+//! over the path of system (9), neither of which stores it.
+//!
+//! [`Analysis::run`] keeps every piece of the path in full (`pieces x
+//! unknowns` numbers), and per interval every node's accelerations, per time
+//! every node's state: quadratic in the number of elements (30 GB estimated
+//! for a 10^4-element cantilever). [`run`] traces the path twice instead
+//! (plcp's trace is deterministic: the second gives the same pieces, bit for
+//! bit, and stops after the last piece it needs):
+//!
+//! 1. each piece is read as it comes by the hinge reading
+//!    ([`crate::hinge::Reader`]) and its residual measured, then dropped;
+//! 2. with the breakpoints known (so the end time, the times of the time
+//!    response, and the sampled `Lambda` values of the [`OutputSelection`]),
+//!    each interval's accelerations are integrated as they come with the
+//!    steps of [`crate::integrate::integrate`] (the same operations on the
+//!    same numbers) and kept for the selected nodes only; the moment pieces
+//!    and diagrams are computed for the selected intervals and breakpoints
+//!    only, and the pieces those need kept.
+//!
+//! What it keeps equals [`Analysis::run`]'s bit for bit
+//! (`frames/tests/output_bounds.rs` compares the JSON and text reports).
+//! What it does not keep: [`crate::response::Response::nodes`] names the
+//! kept nodes; other intervals' moment pieces and other breakpoints'
+//! diagrams have no moments; the pieces of [`crate::solve::Solution`] other
+//! than the kept ones are hollow (their range only, empty vectors).
+//! Plots, targets and the time-stepping continuation need the whole
+//! response: [`run`] runs [`Analysis::run_watched`] where the scene has
+//! targets or yield polygons, the options ask for exact arithmetic, a
+//! certificate or a precision other than `f64`, the system is small (dense
+//! route), or the first pass ends anything but a clean success (a path
+//! escalated to `fx128`, re-solved, or stopped early).
+//!
+//! Memory: the reading (per breakpoint its events, per interval its hinge
+//! sets and the ranges of its pieces), per piece its range and residual,
+//! the state of the integration (two vectors of the coordinates), the
+//! selected series and moments, and plcp's engine (the sparse system and
+//! its basis factors).
+
+use crate::analysis::{Analysis, AnalysisOptions};
+use crate::assemble::System;
+use crate::error::FramesError;
+use crate::hinge::{self, moment_positions};
+use crate::integrate::{schedule, step, METHOD};
+use crate::model::Scene;
+use crate::report::{MomentPick, NodePick, OutputSelection};
+use crate::response::{
+    self, affine_accelerations, residual_at, to_nodes, IntervalResponse, MomentDiagram,
+    MomentPiece, Response, TimeResponse,
+};
+use crate::solve::{self, Piece};
+use plcp::{Control, Residual};
+use std::collections::HashMap;
+
+/// Whether [`run`] analyses `scene` in two passes (else it runs
+/// [`Analysis::run_watched`]), before the first pass.
+pub fn applies(scene: &Scene, system: &System, options: &AnalysisOptions) -> bool {
+    !options.exact
+        && !options.certify
+        && options.solve.precision == plcp::Precision::F64
+        && scene.targets.is_empty()
+        && system.modes.iter().all(|m| m.facet.is_none())
+        && solve::uses_sparse(system, &options.solve)
+}
+
+/// A hollow piece: its range only.
+fn hollow(lambda_from: f64, lambda_to: f64) -> Piece {
+    Piece {
+        lambda_from,
+        lambda_to,
+        u_from: Vec::new(),
+        du: Vec::new(),
+        z_from: Vec::new(),
+        dz: Vec::new(),
+        w_from: Vec::new(),
+        dw: Vec::new(),
+    }
+}
+
+/// The analysis of `scene` in two passes over its path, keeping what the
+/// JSON and text reports ask for with `moments` and `nodes` (`None`: the
+/// default of [`OutputSelection::default_for`]); see the module
+/// documentation. `Err` as [`Analysis::run`], and for a node id `nodes` names
+/// that the scene has not.
+pub fn run(
+    scene: Scene,
+    options: &AnalysisOptions,
+    moments: Option<MomentPick>,
+    nodes: Option<NodePick>,
+    watch: Option<solve::Watch>,
+) -> Result<Analysis, FramesError> {
+    if let Some(t) = options.t_end {
+        if t.is_nan() || t <= 0.0 || !t.is_finite() {
+            return Err(FramesError::invalid(
+                "t_end",
+                format!("must be positive and finite, got {t}"),
+            ));
+        }
+    }
+    let system = System::assemble(&scene.frame);
+    if !applies(&scene, &system, options) {
+        return Analysis::run_watched(scene, options, watch);
+    }
+    let escalate = options.escalate;
+    let tolerance = (f64::EPSILON.sqrt() * 10.0).max(1e-13);
+    // pass 1: the reading, and each piece's range and residuals
+    let problem = system.plcp_sparse::<f64>(None).ok();
+    let mut reader = hinge::Reader::new(&scene.frame, &system, tolerance);
+    let mut ranges: Vec<(f64, f64)> = Vec::new();
+    let mut residuals: Vec<Option<(Residual, Residual)>> = Vec::new();
+    let mut solution =
+        solve::trace_pieces(&system, &options.solve, escalate, watch.clone(), |k, p| {
+            reader.push(k, &p);
+            ranges.push((p.lambda_from, p.lambda_to));
+            residuals.push(problem.as_ref().map(|problem| {
+                (
+                    residual_at(problem, &p, p.lambda_from),
+                    residual_at(problem, &p, p.representative()),
+                )
+            }));
+            Control::Continue
+        })?;
+    let poor = !solution.status.is_success() || solution.info.residual.worst() > 1e-6;
+    if solution.info.escalation.is_some() || poor || solution.tolerance != tolerance {
+        return Analysis::run_watched(scene, options, watch);
+    }
+    let reading = reader.finish();
+    // the times, as Analysis::run_watched takes them
+    let mut t_end = options.t_end.unwrap_or_else(|| {
+        response::default_t_end(&scene.history, &reading, options.solve.lambda_max)
+    });
+    let reached = if solution.status == plcp::Status::UnboundedRay {
+        f64::INFINITY
+    } else {
+        solution.lambda_reached
+    };
+    if scene.history.lambda(t_end) > reached {
+        t_end = scene.history.time_at(reached).unwrap_or(t_end);
+    }
+    let n = options.samples.max(2);
+    let mut times: Vec<f64> = (0..n).map(|i| t_end * i as f64 / (n - 1) as f64).collect();
+    for b in &reading.breakpoints {
+        if let Some(t) = scene.history.time_at(b.lambda) {
+            if t > 0.0 && t < t_end {
+                times.push(t);
+            }
+        }
+    }
+    times.sort_by(f64::total_cmp);
+    times.dedup();
+    // what the reports will ask for
+    let frame = &scene.frame;
+    let mut sel = OutputSelection::default_for_counts(frame.nodes.len(), reading.breakpoints.len());
+    if let Some(m) = moments {
+        sel.moments = m;
+    }
+    if let Some(n) = nodes {
+        sel.nodes = n;
+    }
+    let ids: Vec<&str> = frame.nodes.iter().map(|n| n.id.as_str()).collect();
+    let mut kept = sel
+        .node_indices(&ids)
+        .map_err(|message| FramesError::Scene {
+            file: scene.file.clone(),
+            line: 0,
+            key: "--nodes".into(),
+            message,
+        })?;
+    // the text report lists the accelerations of up to 8 nodes with mass
+    let massive: Vec<usize> = (0..frame.nodes.len())
+        .filter(|&i| frame.nodes[i].mass > 0.0 || frame.nodes[i].inertia > 0.0)
+        .collect();
+    if massive.len() <= 8 {
+        kept.extend(massive);
+    }
+    kept.sort_unstable();
+    kept.dedup();
+    let interval_lambdas: Vec<f64> = reading.intervals.iter().map(|iv| iv.lambda_from).collect();
+    let interval_sel = sel.moment_indices(&interval_lambdas);
+    let plastic: Vec<usize> = (0..reading.intervals.len())
+        .filter(|&i| !reading.intervals[i].rigid)
+        .collect();
+    // per breakpoint, the piece that starts there (as response::build)
+    let diagram_pieces: Vec<usize> = reading
+        .breakpoints
+        .iter()
+        .zip(&plastic)
+        .map(|(b, &i)| reading.intervals[i].piece_at(b.lambda))
+        .collect();
+    let diagram_lambdas: Vec<f64> = reading
+        .breakpoints
+        .iter()
+        .take(diagram_pieces.len())
+        .map(|b| b.lambda)
+        .collect();
+    let diagram_sel = sel.moment_indices(&diagram_lambdas);
+    // the integration's windows, each with its interval; folded as the
+    // intervals come, so they must come in order (a history whose lambda(t)
+    // returns to an earlier interval is analysed whole)
+    let iv_ranges: Vec<(f64, f64)> = reading
+        .intervals
+        .iter()
+        .map(|iv| (iv.lambda_from, iv.lambda_to))
+        .collect();
+    let (knots, windows) = schedule(&iv_ranges, &scene.history, &times);
+    let order: Vec<usize> = windows.iter().flatten().copied().collect();
+    if order.windows(2).any(|w| w[1] < w[0]) {
+        return Analysis::run_watched(scene, options, watch);
+    }
+    // what pass 2 needs of each piece
+    let npieces = ranges.len();
+    let mut first_of: Vec<Option<usize>> = vec![None; npieces];
+    for (i, iv) in reading.intervals.iter().enumerate() {
+        first_of[iv.piece] = Some(i);
+    }
+    let mut span_of: HashMap<usize, Vec<(usize, usize)>> = HashMap::new();
+    for &i in &interval_sel {
+        for (j, sp) in reading.intervals[i].pieces.iter().enumerate() {
+            span_of.entry(sp.piece).or_default().push((i, j));
+        }
+    }
+    let mut diagram_of: HashMap<usize, Vec<usize>> = HashMap::new();
+    for &d in &diagram_sel {
+        diagram_of.entry(diagram_pieces[d]).or_default().push(d);
+    }
+    // every interval's accelerations are reported
+    let last_needed = reading
+        .intervals
+        .iter()
+        .map(|iv| iv.piece)
+        .chain(span_of.keys().copied())
+        .chain(diagram_of.keys().copied())
+        .max()
+        .unwrap_or(0);
+    // the response's skeleton: residuals per interval (as response::build)
+    let ns = system.sections.len();
+    let nb = system.coordinates.len();
+    let positions = moment_positions(&system);
+    let moment = |u: &[f64], k: usize| positions[k].map_or(0.0, |r| u[r]);
+    let mut intervals: Vec<IntervalResponse> = reading
+        .intervals
+        .iter()
+        .map(|iv| {
+            let mut res = Residual::default();
+            for (k, r) in ranges.iter().enumerate() {
+                if r.0 >= iv.lambda_from
+                    && r.0 < iv.lambda_to.max(iv.lambda_from + f64::MIN_POSITIVE)
+                {
+                    if let Some((a, b)) = residuals[k] {
+                        res = res.max(a);
+                        res = res.max(b);
+                    }
+                }
+            }
+            IntervalResponse {
+                lambda_from: iv.lambda_from,
+                lambda_to: iv.lambda_to,
+                accelerations: Vec::new(),
+                pieces: iv
+                    .pieces
+                    .iter()
+                    .map(|sp| MomentPiece {
+                        lambda_from: sp.lambda_from,
+                        lambda_to: sp.lambda_to,
+                        piece: sp.piece,
+                        moments: Vec::new(),
+                    })
+                    .collect(),
+                residual: res,
+            }
+        })
+        .collect();
+    let mut diagrams: Vec<MomentDiagram> = diagram_lambdas
+        .iter()
+        .map(|&lambda| MomentDiagram {
+            lambda,
+            moments: Vec::new(),
+        })
+        .collect();
+    drop(residuals);
+    // pass 2
+    let history = &scene.history;
+    let mut slots: HashMap<u64, Vec<usize>> = HashMap::new();
+    for (k, t) in times.iter().enumerate() {
+        slots.entry(t.to_bits()).or_default().push(k);
+    }
+    let slot_of: Vec<Option<usize>> = system
+        .coordinates
+        .iter()
+        .map(|c| kept.binary_search(&c.node).ok())
+        .collect();
+    let rows = |q: &[f64]| -> Vec<[f64; 6]> {
+        let mut out = vec![[0.0; 6]; kept.len()];
+        for (j, c) in system.coordinates.iter().enumerate() {
+            if let Some(s) = slot_of[j] {
+                out[s][c.component.index()] = q.get(j).copied().unwrap_or(0.0);
+            }
+        }
+        out
+    };
+    let mut displacement: Vec<Option<Vec<[f64; 6]>>> = vec![None; times.len()];
+    let mut velocity: Vec<Option<Vec<[f64; 6]>>> = vec![None; times.len()];
+    let t_last = times.last().copied();
+    let mut end_q: Option<Vec<f64>> = None;
+    let mut q = vec![0.0; nb];
+    let mut v = vec![0.0; nb];
+    let mut record = |t: f64, q: &[f64], v: &[f64]| {
+        if let Some(ks) = slots.get(&t.to_bits()) {
+            for &k in ks {
+                displacement[k] = Some(rows(q));
+                velocity[k] = Some(rows(v));
+            }
+        }
+        if Some(t) == t_last {
+            end_q = Some(q.to_vec());
+        }
+    };
+    record(0.0, &q, &v);
+    let mut next_window = 0;
+    let mut retained: HashMap<usize, Piece> = HashMap::new();
+    let mut same = true;
+    solve::trace_pieces(&system, &options.solve, escalate, None, |k, p| {
+        same &= ranges.get(k).is_some_and(|r| {
+            r.0.to_bits() == p.lambda_from.to_bits() && r.1.to_bits() == p.lambda_to.to_bits()
+        });
+        if let Some(i) = first_of[k] {
+            let iv = &reading.intervals[i];
+            let (base, slope) = affine_accelerations(&system, iv, &p);
+            let mut acc = vec![[[0.0; 2]; 6]; kept.len()];
+            for (j, c) in system.coordinates.iter().enumerate() {
+                if let Some(s) = slot_of[j] {
+                    acc[s][c.component.index()] = [base[j], slope[j]];
+                }
+            }
+            intervals[i].accelerations = acc;
+            // the windows of this interval, in order
+            while next_window < windows.len() {
+                match windows[next_window] {
+                    None => {}
+                    Some(w) if w == i => {
+                        let (ta, tb) = (knots[next_window], knots[next_window + 1]);
+                        step(history, (ta, tb), (&base, &slope), &mut q, &mut v);
+                        record(tb, &q, &v);
+                    }
+                    Some(_) => break,
+                }
+                next_window += 1;
+            }
+        }
+        let mut keep = false;
+        if let Some(spans) = span_of.get(&k) {
+            let u0 = p.u(0.0);
+            for &(i, j) in spans {
+                intervals[i].pieces[j].moments = (0..ns)
+                    .map(|s| [moment(&u0, s), moment(&p.du, s)])
+                    .collect();
+            }
+            keep = true;
+        }
+        if let Some(ds) = diagram_of.get(&k) {
+            for &d in ds {
+                let u = p.u(diagrams[d].lambda);
+                diagrams[d].moments = (0..ns).map(|s| moment(&u, s)).collect();
+            }
+            keep = true;
+        }
+        if keep {
+            retained.insert(k, p);
+        }
+        if k >= last_needed {
+            Control::Stop
+        } else {
+            Control::Continue
+        }
+    })?;
+    if !same
+        || windows[next_window.min(windows.len())..]
+            .iter()
+            .any(Option::is_some)
+    {
+        // the second trace did not retrace the first: analysed whole
+        return Analysis::run_watched(scene, options, watch);
+    }
+    let end_displacement = to_nodes(frame, &system, &end_q.unwrap_or_else(|| vec![0.0; nb]));
+    let zero = || vec![[0.0; 6]; kept.len()];
+    let time = TimeResponse {
+        history: history.clone(),
+        method: METHOD,
+        lambda: times.iter().map(|&t| history.lambda(t)).collect(),
+        times,
+        displacement: displacement
+            .into_iter()
+            .map(|d| d.unwrap_or_else(zero))
+            .collect(),
+        velocity: velocity
+            .into_iter()
+            .map(|d| d.unwrap_or_else(zero))
+            .collect(),
+        end_displacement,
+    };
+    solution.pieces = ranges
+        .iter()
+        .enumerate()
+        .map(|(k, &(from, to))| retained.remove(&k).unwrap_or_else(|| hollow(from, to)))
+        .collect();
+    let response = Response {
+        intervals,
+        moments_at_breakpoints: diagrams,
+        time,
+        nodes: Some(kept),
+    };
+    Ok(Analysis {
+        targets: Vec::new(),
+        scene,
+        system,
+        options: options.clone(),
+        solution,
+        reading,
+        response,
+        note: None,
+        time_stepping: None,
+    })
+}
