@@ -27,6 +27,10 @@
 //! spans at most `sqrt(eps)` relative to `max(1, |L|)` (the float path's
 //! trust level: a longer span is a segment the float path missed, and the
 //! certificate fails). [`Certificate::bridges`] counts the bases inserted.
+//! Likewise a breakpoint whose float leaving variable is not yet zero at the
+//! exact end (another variable reaches zero first, `1e-19` earlier) is
+//! accepted when the next segment is reached from that exact end
+//! ([`Certificate::reordered`]); if it is not, that is the failure.
 //!
 //! Then for every `L` in `[L0, E_last]` some `S_k` gives an exact solution,
 //! complementary since the non-basic member of each pair is zero: the path's
@@ -80,6 +84,11 @@ pub struct Certificate {
     /// The largest span of a bridge, relative to `max(1, |L|)` (0 without
     /// bridges).
     pub bridge_span: f64,
+    /// Breakpoints whose float leaving variable is not the one that reaches
+    /// zero first exactly (two events closer than rounding, taken in the
+    /// other order), where the next segment is still reached from the exact
+    /// end, directly or by a bridge.
+    pub reordered: usize,
     /// Wall-clock seconds.
     pub seconds: f64,
 }
@@ -106,12 +115,12 @@ impl Certificate {
     /// ` (with 2 exact bases bridging events the float path took as one,
     /// spans up to 3.5e-16)`, or empty without bridges.
     pub fn bridge_note(&self) -> String {
-        if self.bridges == 0 {
+        if self.bridges == 0 && self.reordered == 0 {
             return String::new();
         }
         format!(
-            " (with {} exact bases bridging events the float path took as one, spans up to {:.1e})",
-            self.bridges, self.bridge_span
+            " (with {} exact bases bridging events the float path took as one, spans up to {:.1e}; {} breakpoints whose events the float path took in the other order)",
+            self.bridges, self.bridge_span, self.reordered
         )
     }
     /// As JSON: `{"certified", "failure": {"segment", "reason"} or null,
@@ -132,6 +141,7 @@ impl Certificate {
             "modular": self.modular,
             "bridges": self.bridges,
             "bridge_span": self.bridge_span,
+            "reordered": self.reordered,
             "seconds": self.seconds,
         })
     }
@@ -504,6 +514,9 @@ fn run<T: Scalar>(
     let mut start = to_rational(path.lambda0);
     // the basis (columns) of the last certified segment
     let mut prev_target: Option<Vec<usize>> = None;
+    // a breakpoint whose leaving variable is not the exact one: resolved if
+    // the next segment is reached from the exact end
+    let mut pending: Option<Failure> = None;
     let nseg = path.segments.len();
     if nseg == 0 {
         // a path without segments claims a solution at L0 only: certify the
@@ -601,6 +614,12 @@ fn run<T: Scalar>(
         let start_k = start.clone();
         let below = lo.as_ref().is_some_and(|l| l > &start);
         let above = hi.as_ref().is_some_and(|h| h < &start);
+        if let Some(f) = pending.take() {
+            if below || above {
+                return Err(f);
+            }
+            cert.reordered += 1;
+        }
         if below || above {
             let bad = (0..t.basis.len())
                 .filter(|&i| t.signed(t.basis[i]))
@@ -678,7 +697,7 @@ fn run<T: Scalar>(
                 if matches!(lv, Var::Z(_) | Var::W(_)) && in_basis {
                     let v = value_at(&t, lv, e);
                     if !v.is_zero() {
-                        return Err(fail(
+                        let f = fail(
                             k,
                             format!(
                                 "the breakpoint's leaving variable {lv} is {} at the segment's exact end L = {}, not zero (the float breakpoint is L = {:e})",
@@ -686,7 +705,15 @@ fn run<T: Scalar>(
                                 short(e),
                                 bp.lambda.to_f64()
                             ),
-                        ));
+                        );
+                        // another variable reaches zero first, exactly: the
+                        // float path took the two events in the other order.
+                        // Right to rounding if the next segment is reached
+                        // from here (directly or by a bridge)
+                        if last {
+                            return Err(f);
+                        }
+                        pending = Some(f);
                     }
                 }
             }
