@@ -1,0 +1,596 @@
+//! The JSON document (`frames run SCENE --json`): [`Analysis::to_json`],
+//! and [`JsonReport`], the same document written part by part.
+
+use super::num;
+use super::OutputSelection;
+use crate::analysis::Analysis;
+use crate::hinge::{section_name, EventKind, HingeEvent};
+use serde_json::{json, Map, Value};
+
+impl Analysis {
+    fn section_json(&self, section: usize, sign: &str, tied: &[usize]) -> Value {
+        let n = section_name(&self.scene.frame, &self.system, section);
+        let mut o =
+            json!({"member": n.member, "end": n.end.as_str(), "node": n.node, "sign": sign});
+        let others: Vec<Value> = tied
+            .iter()
+            .filter(|&&k| k != section)
+            .map(|&k| {
+                let m = section_name(&self.scene.frame, &self.system, k);
+                json!({"member": m.member, "end": m.end.as_str(), "node": m.node})
+            })
+            .collect();
+        if !others.is_empty() {
+            o["tied"] = Value::Array(others);
+        }
+        o
+    }
+
+    fn event_json(&self, e: &HingeEvent) -> Value {
+        let mut o = self.section_json(
+            e.section,
+            e.sign.as_str(),
+            &self.reading.groups[e.group].sections,
+        );
+        self.add_facet(&mut o, e.mode);
+        o
+    }
+
+    /// Adds `"facet": {"index", "of", "normal"}` for a mode of a yield polygon.
+    fn add_facet(&self, o: &mut Value, mode: usize) {
+        if let Some(f) = self.system.modes.get(mode).and_then(|m| m.facet) {
+            o["facet"] = json!({"index": f.index, "of": f.count, "normal": f.normal});
+            if let Some(n3) = f.normal3 {
+                o["facet"]["normal3"] = json!(n3);
+            }
+            if let Some(nn) = f.axial {
+                o["facet"]["normal_axial"] = json!(nn);
+            }
+        }
+    }
+
+    /// The JSON document (`--json`).
+    pub fn to_json(&self) -> Value {
+        self.to_json_selected(&OutputSelection::default_for(self))
+            .expect("the default selection names no node")
+    }
+
+    /// The JSON document with moment distributions and node series where
+    /// `sel` asks for them (see [`OutputSelection`]); `Err` names an unknown
+    /// node id.
+    pub fn to_json_selected(&self, sel: &OutputSelection) -> Result<Value, String> {
+        serde_json::to_value(self.json_report(sel)?).map_err(|e| e.to_string())
+    }
+
+    /// The JSON document of [`Analysis::to_json_selected`] as a value that
+    /// serialises itself part by part: the per-breakpoint, per-interval and
+    /// per-diagram entries are built one at a time as they are written, so
+    /// that writing it (`serde_json::to_writer(w, &report)`, what `frames run
+    /// --json` does) holds one entry in memory, not the document. The bytes
+    /// written are those of serialising [`Analysis::to_json_selected`]'s value
+    /// (keys in the same sorted order; a test checks it). [`JsonReport::insert`]
+    /// adds a key.
+    pub fn json_report(&self, sel: &OutputSelection) -> Result<JsonReport<'_>, String> {
+        let fr = &self.scene.frame;
+        let node_ids: Vec<&str> = fr.nodes.iter().map(|n| n.id.as_str()).collect();
+        let node_sel = sel.node_indices(&node_ids)?;
+        let interval_lambdas: Vec<f64> = self
+            .reading
+            .intervals
+            .iter()
+            .map(|iv| iv.lambda_from)
+            .collect();
+        let interval_sel = sel.moment_indices(&interval_lambdas);
+        let diagram_lambdas: Vec<f64> = self
+            .response
+            .moments_at_breakpoints
+            .iter()
+            .map(|d| d.lambda)
+            .collect();
+        let diagram_sel = sel.moment_indices(&diagram_lambdas);
+        self.check_kept(&node_sel, &interval_sel, &diagram_sel)?;
+        let (n_interval_sel, n_diagram_sel) = (interval_sel.len(), diagram_sel.len());
+        let output = json!({
+            "moments": sel.describe("Lambda values with moment distributions", n_diagram_sel, diagram_lambdas.len(), "--moments"),
+            "interval_moments": sel.describe("intervals with moment pieces", n_interval_sel, interval_lambdas.len(), "--moments"),
+            "nodes": sel.describe("nodes with accelerations and series", node_sel.len(), node_ids.len(), "--nodes"),
+        });
+        let mut report = JsonReport { parts: Vec::new() };
+        for (key, part) in [
+            ("scene", Part::Value(json!(self.scene.file))),
+            ("title", Part::Value(json!(fr.title))),
+            ("output", Part::Value(json!(output))),
+            ("system", Part::Value(json!(self.system_json()))),
+            ("solver", Part::Value(json!(self.solver_json()))),
+            ("status", Part::Value(json!(self.solution.status.as_str()))),
+            (
+                "collapse_load",
+                Part::Value(json!(self
+                    .reading
+                    .collapse_load()
+                    .map(num)
+                    .unwrap_or(Value::Null))),
+            ),
+            ("model", Part::Value(json!(fr.model.as_str()))),
+            ("conventions", Part::Value(json!(conventions(fr.model)))),
+            (
+                "breakpoints",
+                Part::seq(move || {
+                    self.reading
+                        .breakpoints
+                        .iter()
+                        .map(|b| self.breakpoint_json(b))
+                }),
+            ),
+            ("hinges", Part::Value(json!(self.hinges_json()))),
+            (
+                "intervals",
+                self.intervals_part(node_sel.clone(), interval_sel),
+            ),
+            ("moments_at_breakpoints", self.diagrams_part(diagram_sel)),
+            ("targets", Part::Value(json!(self.targets_json()))),
+            (
+                "response",
+                Part::Value(json!({
+                    "history": self.response.time.history.describe(),
+                    "method": self.response.time.method,
+                    "times": self.response.time.times,
+                    "lambda": self.response.time.lambda,
+                    "nodes": self.nodes_json(&node_sel),
+                })),
+            ),
+        ] {
+            report.insert_part(key, part);
+        }
+        Ok(report)
+    }
+
+    /// The `system` of the JSON report: sizes, what is left out, the model.
+    fn system_json(&self) -> Value {
+        let fr = &self.scene.frame;
+        let sys = &self.system;
+        let sz = sys.sizes();
+        let lo = &sys.left_out;
+        json!({
+            "free": sz.free(),
+            "complementary": sz.modes,
+            "coordinates": sz.coordinates,
+            "member_forces": sz.forces,
+            "yield_modes": sz.modes,
+            "full": {
+                "free": sys.full.free(),
+                "complementary": sys.full.modes,
+                "coordinates": sys.full.coordinates,
+                "member_forces": sys.full.forces,
+                "yield_modes": sys.full.modes,
+            },
+            "left_out": {
+                "summary": self.left_out_summary(),
+                "supported": lo.supported.iter().map(|&(n, c)| self.coord_name(n, c)).collect::<Vec<_>>(),
+                "loads_on_supports": lo.loads_on_supports.iter().map(|&(n, c)| self.coord_name(n, c)).collect::<Vec<_>>(),
+                "decoupled_coordinates": lo.decoupled_coordinates.iter().map(|&(n, c)| self.coord_name(n, c)).collect::<Vec<_>>(),
+                "decoupled_forces": lo.decoupled_forces.iter().map(|f| self.force_name(f)).collect::<Vec<_>>(),
+                "decoupled_yield_modes": lo.decoupled_modes,
+            },
+            "statically_determinate": sys.is_determinate(),
+            "indeterminacy": sys.indeterminacy(),
+            "model": fr.model.as_str(),
+            "yield_surfaces": self.yield_summary(),
+            "axial": match fr.model {
+                crate::model::Model::Planar => "members without plastic_axial inextensible: the axial force of each such element is a member force whose elongation rate is held at zero (no yield mode); with plastic_axial it enters the yield polygon of both end sections",
+                crate::model::Model::Grillage => "grillage: no axial forces; the torque of each element is a member force in the yield polygon of both end sections",
+                crate::model::Model::Space if fr.elements.iter().any(|e| e.interaction.is_some_and(|i| i.axial.is_some())) => "space: members without plastic_axial inextensible (their axial force is a member force whose elongation rate is held at zero); the torque and the two bending moments of each section enter its yield polyhedron, with plastic_axial the axial force too (the polytope)",
+                crate::model::Model::Space => "space: members inextensible (the axial force of each element is a member force whose elongation rate is held at zero); the torque and the two bending moments of each section enter its yield polyhedron",
+            },
+        })
+    }
+
+    /// The `solver` of the JSON report: method, pivots, residuals, certificate.
+    fn solver_json(&self) -> Value {
+        let info = &self.solution.info;
+        json!({
+            "method": info.method,
+            "precision": info.precision,
+            "pivots": info.pivots,
+            "degenerate_pivots": info.degenerate_pivots,
+            "residual": {"equation": info.residual.equation, "feasibility": info.residual.feasibility, "complementarity": info.residual.complementarity},
+            "lambda_reached": num(self.solution.lambda_reached),
+            "message": self.solution.message,
+            "note": self.note,
+            "free_block": {"rank": info.free_block.rank, "nonbasic_free": info.free_block.nonbasic_free.len(), "dependent_rows": info.free_block.dependent_rows.len()},
+            "certificate": info.certificate.as_ref().map(|c| c.to_json()),
+            "exact_critical_loads": info.certificate.as_ref().map(|_| self.exact_critical_loads()),
+        })
+    }
+
+    /// One entry of `breakpoints`: its `lambda` and events.
+    fn breakpoint_json(&self, b: &crate::hinge::EventPoint) -> Value {
+        let mut o = Map::new();
+        o.insert("lambda".into(), num(b.lambda));
+        for k in [
+            EventKind::Yielded,
+            EventKind::FlowStarted,
+            EventKind::FlowStopped,
+            EventKind::Unloaded,
+        ] {
+            o.insert(
+                k.as_str().into(),
+                Value::Array(b.of(k).map(|e| self.event_json(e)).collect()),
+            );
+        }
+        o.insert("stress_unique".into(), json!(b.stress_unique));
+        Value::Object(o)
+    }
+
+    /// The `hinges`: each section's first yield.
+    fn hinges_json(&self) -> Vec<Value> {
+        self.reading
+            .hinges
+            .iter()
+            .map(|h| {
+                let mut v = self.section_json(
+                    h.section,
+                    h.sign.as_str(),
+                    &self.reading.groups[h.group].sections,
+                );
+                v["lambda"] = num(h.lambda);
+                self.add_facet(&mut v, h.mode);
+                v
+            })
+            .collect()
+    }
+
+    /// The nodes (and, for a single section, member and end) of groups `gs`.
+    fn group_nodes(&self, gs: &[usize]) -> Vec<Value> {
+        let (fr, sys) = (&self.scene.frame, &self.system);
+        gs.iter()
+            .map(|&g| {
+                let k = self.reading.groups[g].sections[0];
+                let n = section_name(fr, sys, k);
+                if self.reading.groups[g].sections.len() > 1 {
+                    json!({"node": n.node})
+                } else {
+                    json!({"node": n.node, "member": n.member, "end": n.end.as_str()})
+                }
+            })
+            .collect()
+    }
+
+    /// The `intervals`, built one at a time as they are written (the part
+    /// owns its selections, shared, as each pass of the serialiser makes a
+    /// new iterator).
+    fn intervals_part(&self, node_sel: Vec<usize>, interval_sel: Vec<usize>) -> Part<'_> {
+        let node_sel = std::rc::Rc::new(node_sel);
+        let interval_sel = std::rc::Rc::new(interval_sel);
+        Part::seq(move || {
+            let node_sel = node_sel.clone();
+            let interval_sel = interval_sel.clone();
+            self.reading
+                .intervals
+                .iter()
+                .zip(&self.response.intervals)
+                .enumerate()
+                .map(move |(k, (iv, r))| {
+                    let with_moments = interval_sel.binary_search(&k).is_ok();
+                    self.interval_json(iv, r, &node_sel, with_moments)
+                })
+        })
+    }
+
+    /// One entry of `intervals`: hinge sets, the accelerations of the nodes
+    /// `node_sel`, and (`with_moments`) the member forces piece by piece.
+    fn interval_json(
+        &self,
+        iv: &crate::hinge::Interval,
+        r: &crate::response::IntervalResponse,
+        node_sel: &[usize],
+        with_moments: bool,
+    ) -> Value {
+        let fr = &self.scene.frame;
+        let mut acc = Map::new();
+        for &i in node_sel.iter() {
+            let n = &fr.nodes[i];
+            let slot = self.response.slot(i).unwrap_or(i);
+            let mut o = Map::new();
+            for c in fr.model.components() {
+                o.insert(c.as_str().into(), json!(r.accelerations[slot][c.index()]));
+            }
+            acc.insert(n.id.clone(), Value::Object(o));
+        }
+        // the member forces piece by piece; at the interval's level
+        // only where one piece holds the whole interval (null where
+        // the path pivots inside it: no one affine field is right)
+        let pieces: Vec<Value> = r
+            .pieces
+            .iter()
+            .filter(|_| with_moments)
+            .map(|p| {
+                let mut o = json!({
+                    "lambda_from": num(p.lambda_from),
+                    "lambda_to": num(p.lambda_to),
+                    "moments": self.member_moments(|k| p.moments[k]),
+                    "second_forces": self.member_second_forces(&self.solution.pieces[p.piece], None),
+                });
+                self.add_space_forces(&mut o, &self.solution.pieces[p.piece], None);
+                o
+            })
+            .collect();
+        let (moments, second_forces) = match pieces.as_slice() {
+            [one] => (one["moments"].clone(), one["second_forces"].clone()),
+            _ => (Value::Null, Value::Null),
+        };
+        json!({
+            "lambda_from": num(iv.lambda_from),
+            "lambda_to": num(iv.lambda_to),
+            "rigid": iv.rigid,
+            "accelerating": self.group_nodes(&iv.accelerating),
+            "constant_rate": self.group_nodes(&iv.constant_rate),
+            "accelerations": acc,
+            "moments": moments,
+            "second_forces": second_forces,
+            "pieces": pieces,
+            "residual": {"equation": r.residual.equation, "feasibility": r.residual.feasibility, "complementarity": r.residual.complementarity},
+        })
+    }
+
+    /// The `moments_at_breakpoints` selected by `diagram_sel`, built one at a
+    /// time as they are written.
+    fn diagrams_part(&self, diagram_sel: Vec<usize>) -> Part<'_> {
+        let diagram_sel = std::rc::Rc::new(diagram_sel);
+        Part::seq(move || {
+            let diagram_sel = diagram_sel.clone();
+            self.response
+                .moments_at_breakpoints
+                .iter()
+                .zip(self.reading.intervals.iter().filter(|i| !i.rigid))
+                .enumerate()
+                .filter(move |(k, _)| diagram_sel.binary_search(k).is_ok())
+                .map(|(_, x)| x)
+                .map(|(d, iv)| {
+                    let piece = &self.solution.pieces[iv.piece_at(d.lambda)];
+                    let mut o = json!({"lambda": num(d.lambda), "members": self.member_moments(|k| d.moments[k]), "second_forces": self.member_second_forces(piece, Some(d.lambda))});
+                    self.add_space_forces(&mut o, piece, Some((d.lambda, &d.moments)));
+                    o
+                })
+        })
+    }
+
+    /// The `nodes` of the time response: displacement and velocity series
+    /// of the nodes `node_sel`.
+    fn nodes_json(&self, node_sel: &[usize]) -> Map<String, Value> {
+        let fr = &self.scene.frame;
+        let t = &self.response.time;
+        let mut nodes = Map::new();
+        for &i in node_sel {
+            let n = &fr.nodes[i];
+            let slot = self.response.slot(i).unwrap_or(i);
+            let series = |v: &Vec<Vec<[f64; 6]>>| {
+                let mut o = Map::new();
+                for c in fr.model.components() {
+                    o.insert(
+                        c.as_str().into(),
+                        json!(v.iter().map(|row| row[slot][c.index()]).collect::<Vec<_>>()),
+                    );
+                }
+                Value::Object(o)
+            };
+            nodes.insert(
+                n.id.clone(),
+                json!({"displacement": series(&t.displacement), "velocity": series(&t.velocity)}),
+            );
+        }
+        nodes
+    }
+
+    /// `Err` if the selection asks for what a large scene's analysis did not
+    /// keep ([`crate::response::Response::nodes`]: it keeps what its own selection asked for).
+    fn check_kept(
+        &self,
+        nodes: &[usize],
+        intervals: &[usize],
+        diagrams: &[usize],
+    ) -> Result<(), String> {
+        let r = &self.response;
+        if r.nodes.is_none() {
+            return Ok(());
+        }
+        let ns = self.system.sections.len();
+        let lost = nodes.iter().any(|&i| r.slot(i).is_none())
+            || intervals.iter().any(|&k| {
+                r.intervals[k]
+                    .pieces
+                    .iter()
+                    .any(|p| p.moments.len() != ns || self.solution.pieces[p.piece].du.is_empty())
+            })
+            || diagrams
+                .iter()
+                .any(|&k| r.moments_at_breakpoints[k].moments.len() != ns);
+        if lost {
+            return Err("the selection asks for nodes or moments the analysis did not keep (a large scene's analysis keeps what its own selection asked for: pass the same --moments and --nodes)".into());
+        }
+        Ok(())
+    }
+
+    /// Per member: `from`, `to` and `along` (`[s, value]` at every element end).
+    fn member_moments<V: serde::Serialize + Copy>(&self, value: impl Fn(usize) -> V) -> Value {
+        let fr = &self.scene.frame;
+        let mut out = Map::new();
+        for (mi, m) in fr.members.iter().enumerate() {
+            let mut along = Vec::new();
+            let mut s = 0.0;
+            for e in m.elements.clone() {
+                along.push(json!([s, value(2 * e)]));
+                s += fr.elements[e].length;
+                along.push(json!([s, value(2 * e + 1)]));
+            }
+            let _ = mi;
+            out.insert(
+                m.id.clone(),
+                json!({"from": value(2 * m.elements.start), "to": value(2 * m.elements.end - 1), "along": along}),
+            );
+        }
+        Value::Object(out)
+    }
+
+    /// A general space scene's other section forces, added to a moment
+    /// distribution `o` (keys `m2`, `bending`, `axial_forces`; see
+    /// [`crate::section_forces`]): at a breakpoint (`at = (lambda, M3 of
+    /// every section)`) their values, on a piece (`at = None`) `M2` and the
+    /// axial forces as affine `[base, slope]` (the magnitude is not affine).
+    /// Planar and grillage scenes get nothing.
+    fn add_space_forces(
+        &self,
+        o: &mut Value,
+        piece: &crate::solve::Piece,
+        at: Option<(f64, &[f64])>,
+    ) {
+        let Some(sf) =
+            crate::section_forces::SpaceForces::new(&self.system, self.scene.frame.elements.len())
+        else {
+            return;
+        };
+        let fr = &self.scene.frame;
+        let per_element = |value: &dyn Fn(usize) -> Value| -> Value {
+            let mut out = Map::new();
+            for m in &fr.members {
+                out.insert(
+                    m.id.clone(),
+                    Value::Array(m.elements.clone().map(value).collect()),
+                );
+            }
+            Value::Object(out)
+        };
+        match at {
+            Some((lambda, m3)) => {
+                let u = piece.u(lambda);
+                o["m2"] = self.member_moments(|k| sf.m2(&u, k));
+                o["bending"] = self.member_moments(|k| sf.bending(&u, k, m3[k]));
+                o["axial_forces"] = per_element(&|e| json!(sf.axial(&u, e)));
+            }
+            None => {
+                let (u0, du) = (piece.u(0.0), &piece.du);
+                o["m2"] = self.member_moments(|k| [sf.m2(&u0, k), sf.m2(du, k)]);
+                o["axial_forces"] = per_element(&|e| json!([sf.axial(&u0, e), sf.axial(du, e)]));
+            }
+        }
+    }
+
+    /// Per member: the axial force or torque of each element (affine `[base,
+    /// slope]` on the piece, or its value at `lambda`), where it is kept.
+    fn member_second_forces(&self, piece: &crate::solve::Piece, lambda: Option<f64>) -> Value {
+        let fr = &self.scene.frame;
+        let nb = self.system.coordinates.len();
+        let u0 = piece.u(0.0);
+        let mut out = Map::new();
+        for m in &fr.members {
+            let vals: Vec<Value> = m
+                .elements
+                .clone()
+                .map(|e| match self.system.second_force_index(2 * e) {
+                    Some(r) => {
+                        let (b, s) = (u0[nb + r], piece.du[nb + r]);
+                        match lambda {
+                            Some(l) => json!(b + s * l),
+                            None => json!([b, s]),
+                        }
+                    }
+                    None => Value::Null,
+                })
+                .collect();
+            if vals.iter().any(|v| !v.is_null()) {
+                out.insert(m.id.clone(), Value::Array(vals));
+            }
+        }
+        Value::Object(out)
+    }
+
+    /// The `targets` of the JSON report: one object per `[[target]]`.
+    fn targets_json(&self) -> Value {
+        let fr = &self.scene.frame;
+        Value::Array(
+            self.targets
+                .iter()
+                .map(|a| {
+                    let opt = |x: Option<f64>| x.map(num).unwrap_or(Value::Null);
+                    json!({
+                        "node": fr.nodes[a.target.node].id,
+                        "direction": a.target.direction,
+                        "gap": num(a.target.gap),
+                        "reached": a.reached,
+                        "time": opt(a.time),
+                        "lambda": opt(a.lambda),
+                        "velocity": opt(a.velocity),
+                        "kinetic_energy": opt(a.kinetic_energy),
+                        "t_end": num(a.t_end),
+                        "after_deactivation": a.after_deactivation,
+                    })
+                })
+                .collect(),
+        )
+    }
+}
+
+/// The sign conventions of a model (`conventions` of the JSON report).
+fn conventions(model: crate::model::Model) -> &'static str {
+    match model {
+        crate::model::Model::Planar => "bending moments sagging-positive in each element's axes (local y = member direction turned 90 degrees counter-clockwise); sign of a section = sign of its moment at yield (for a facet of a yield polygon: the sign of the normal's bending component; the facet and its unit normal in (M/Mp, N/Np) are given); end = end of the element the section sits at; affine values are [base, slope] with value = base + slope * lambda",
+        crate::model::Model::Grillage => "grillage in the x-y plane: z translation, right-handed rotations rx, ry; element axes x' along the member, y' turned 90 degrees counter-clockwise; bending moment about y' dual to the hinge rotation (from end: -(theta_a - psi), to end: theta_b - psi, psi = -(w_b - w_a)/h), torque right-handed about x'; each yield mode is a facet of the inscribed polygon in (M/Mp, T/Tp), given with its unit normal; sign = sign of the normal's bending component; affine values are [base, slope] with value = base + slope * lambda",
+        crate::model::Model::Space => "space frame in global axes: translations x, y, z, right-handed rotations rx, ry, rz; element axes e1 along the member, e3 from its orientation (default z), e2 = e3 x e1; the moment about e3 (as the planar one: from end -(e3.th_a - e2.du/h), to end e3.th_b - e2.du/h) and about e2 (as the grillage's: from end -(e2.th_a + e3.du/h), to end e2.th_b + e3.du/h), the torque about e1; each yield mode is a facet of the inscribed polyhedron in (M2/Mp, M3/Mp, T/Tp), given with its unit normal (normal3); moment distributions give M3 (members), M2 (m2), the bending magnitude sqrt(M2^2 + M3^2) (bending: what meets the yield surface; at breakpoints only), the torques (second_forces) and the axial forces (axial_forces, tension positive) per element; affine values are [base, slope] with value = base + slope * lambda",
+    }
+}
+
+/// One top-level entry of a [`JsonReport`]: a value, or a sequence whose
+/// elements are built one at a time as they are written.
+enum Part<'a> {
+    Value(Value),
+    Seq(Box<dyn Fn() -> Box<dyn Iterator<Item = Value> + 'a> + 'a>),
+}
+
+impl<'a> Part<'a> {
+    fn seq<I: Iterator<Item = Value> + 'a>(f: impl Fn() -> I + 'a) -> Self {
+        Part::Seq(Box::new(move || Box::new(f())))
+    }
+}
+
+impl serde::Serialize for Part<'_> {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        match self {
+            Part::Value(v) => v.serialize(s),
+            Part::Seq(f) => s.collect_seq(f()),
+        }
+    }
+}
+
+/// The JSON report of an analysis, written part by part
+/// ([`Analysis::json_report`]): `serde_json::to_writer` on it writes the
+/// document of [`Analysis::to_json_selected`] holding one breakpoint, interval
+/// or moment diagram at a time.
+pub struct JsonReport<'a> {
+    /// Sorted by key, as `serde_json::Map` (a `BTreeMap`) writes them.
+    parts: Vec<(String, Part<'a>)>,
+}
+
+impl<'a> JsonReport<'a> {
+    /// Adds (or replaces) a top-level key.
+    pub fn insert(&mut self, key: &str, value: Value) {
+        self.insert_part(key, Part::Value(value));
+    }
+
+    fn insert_part(&mut self, key: &str, part: Part<'a>) {
+        match self.parts.binary_search_by(|(k, _)| k.as_str().cmp(key)) {
+            Ok(i) => self.parts[i].1 = part,
+            Err(i) => self.parts.insert(i, (key.to_string(), part)),
+        }
+    }
+}
+
+impl serde::Serialize for JsonReport<'_> {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        use serde::ser::SerializeMap;
+        let mut map = s.serialize_map(Some(self.parts.len()))?;
+        for (k, v) in &self.parts {
+            map.serialize_entry(k, v)?;
+        }
+        map.end()
+    }
+}

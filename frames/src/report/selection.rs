@@ -1,0 +1,138 @@
+//! Which moment distributions and node series the JSON report writes: all
+//! for a small scene, an even sample of `n` out of `len` otherwise
+//! ([`sample_indices`]: `round(k (len - 1) / (n - 1))`, `k = 0..n`).
+
+use crate::analysis::Analysis;
+
+/// Which Lambda values get moment distributions (and which intervals their
+/// pieces) in the JSON report.
+#[derive(Clone, Debug, PartialEq)]
+pub enum MomentPick {
+    /// Every breakpoint and interval.
+    All,
+    /// At most this many, sampled evenly over the breakpoints (first and last kept).
+    Count(usize),
+    /// The breakpoints nearest these Lambda values, and the intervals holding them.
+    At(Vec<f64>),
+}
+
+/// Which nodes get accelerations and the time response in the JSON report.
+#[derive(Clone, Debug, PartialEq)]
+pub enum NodePick {
+    /// Every node.
+    All,
+    /// At most this many, sampled evenly over the node list (first and last kept).
+    Count(usize),
+    /// These node ids.
+    Ids(Vec<String>),
+}
+
+/// What the JSON report writes beyond what it always writes (every
+/// breakpoint's events, every interval's hinge sets): moment distributions
+/// and node series grow with `breakpoints x sections` and `nodes x times`, so
+/// large scenes get a bounded default ([`OutputSelection::default_for`]).
+#[derive(Clone, Debug, PartialEq)]
+pub struct OutputSelection {
+    /// Moment distributions.
+    pub moments: MomentPick,
+    /// Node accelerations and displacement/velocity series.
+    pub nodes: NodePick,
+}
+
+/// Scenes up to this many nodes and breakpoints report everything by default.
+pub const SMALL_SCENE: usize = 200;
+/// The default number of Lambda values with moment distributions, and of
+/// nodes with series, for larger scenes.
+pub const DEFAULT_SAMPLES: usize = 20;
+
+/// `count` indices of `0..len`, evenly spaced, the first and the last kept.
+pub fn sample_indices(len: usize, count: usize) -> Vec<usize> {
+    if count == 0 || len == 0 {
+        return Vec::new();
+    }
+    if len <= count {
+        return (0..len).collect();
+    }
+    if count == 1 {
+        return vec![len - 1];
+    }
+    let mut v: Vec<usize> = (0..count)
+        .map(|k| ((k as f64) * ((len - 1) as f64) / ((count - 1) as f64)).round() as usize)
+        .collect();
+    v.dedup();
+    v
+}
+
+impl OutputSelection {
+    /// Everything.
+    pub fn all() -> Self {
+        Self {
+            moments: MomentPick::All,
+            nodes: NodePick::All,
+        }
+    }
+    /// Everything for a small scene (at most [`SMALL_SCENE`] nodes and
+    /// breakpoints); otherwise [`DEFAULT_SAMPLES`] Lambda values and nodes.
+    pub fn default_for(a: &Analysis) -> Self {
+        Self::default_for_counts(a.scene.frame.nodes.len(), a.reading.breakpoints.len())
+    }
+    /// [`OutputSelection::default_for`] a scene of `nodes` nodes whose path
+    /// has `bps` breakpoints.
+    pub fn default_for_counts(nodes: usize, bps: usize) -> Self {
+        Self {
+            moments: if bps <= SMALL_SCENE && nodes <= SMALL_SCENE {
+                MomentPick::All
+            } else {
+                MomentPick::Count(DEFAULT_SAMPLES)
+            },
+            nodes: if nodes <= SMALL_SCENE {
+                NodePick::All
+            } else {
+                NodePick::Count(DEFAULT_SAMPLES)
+            },
+        }
+    }
+    /// The node indices selected out of `ids`; `Err` names an unknown id.
+    pub fn node_indices(&self, ids: &[&str]) -> Result<Vec<usize>, String> {
+        match &self.nodes {
+            NodePick::All => Ok((0..ids.len()).collect()),
+            NodePick::Count(c) => Ok(sample_indices(ids.len(), *c)),
+            NodePick::Ids(want) => want
+                .iter()
+                .map(|w| {
+                    ids.iter()
+                        .position(|i| i == w)
+                        .ok_or_else(|| format!("--nodes: no node \"{w}\" in the scene"))
+                })
+                .collect(),
+        }
+    }
+    /// Which of `lambdas` (in order) get moment distributions.
+    pub fn moment_indices(&self, lambdas: &[f64]) -> Vec<usize> {
+        match &self.moments {
+            MomentPick::All => (0..lambdas.len()).collect(),
+            MomentPick::Count(c) => sample_indices(lambdas.len(), *c),
+            MomentPick::At(ls) => {
+                let mut v: Vec<usize> = ls
+                    .iter()
+                    .filter_map(|l| {
+                        (0..lambdas.len()).min_by(|&a, &b| {
+                            (lambdas[a] - l).abs().total_cmp(&(lambdas[b] - l).abs())
+                        })
+                    })
+                    .collect();
+                v.sort_unstable();
+                v.dedup();
+                v
+            }
+        }
+    }
+    /// One line for the report: what was selected out of how many.
+    pub(super) fn describe(&self, what: &str, kept: usize, of: usize, flag: &str) -> String {
+        if kept == of {
+            format!("{what}: all {of}")
+        } else {
+            format!("{what}: {kept} of {of} (sampled; {flag} all, a count, or a list)")
+        }
+    }
+}
