@@ -13,10 +13,9 @@ pub fn analysis(name: &str) -> Analysis {
     Analysis::run(Scene::from_file(path).unwrap(), &AnalysisOptions::default()).unwrap()
 }
 
-/// Time-steps the analysis's system from rest with steps `h` to `t_end`:
-/// the run completed, every step's LCP reached its end and its residual is
-/// at rounding level.
-pub fn run(a: &Analysis, h: f64, t_end: f64) -> StepResponse {
+/// Time-steps the analysis's system from rest with steps `h` to `t_end`;
+/// the run completed.
+pub fn run_from_rest(a: &Analysis, h: f64, t_end: f64) -> StepResponse {
     let options = StepOptions {
         h,
         t_end,
@@ -27,6 +26,13 @@ pub fn run(a: &Analysis, h: f64, t_end: f64) -> StepResponse {
         .run(&StepState::rest(&a.system))
         .unwrap();
     assert!(r.outcome.is_completed(), "{:?}", r.outcome);
+    r
+}
+
+/// [`run_from_rest`], and every step's LCP reached its end with a residual
+/// at rounding level.
+pub fn run(a: &Analysis, h: f64, t_end: f64) -> StepResponse {
+    let r = run_from_rest(a, h, t_end);
     assert!(
         r.steps.iter().all(|s| s.status == plcp::Status::Reached),
         "every step LCP solved"
