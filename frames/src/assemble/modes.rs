@@ -39,25 +39,14 @@ pub(super) fn yield_modes(frame: &Frame, sections: &[CriticalSection]) -> Vec<Mo
                     if nf != 0.0 {
                         column.push((2 * ne + sec.element, nf * mp / it.capacity));
                     }
-                    modes.push(ModeSpec {
-                        mode: YieldMode {
-                            section: k,
-                            sign: if nm >= 0.0 {
-                                Sign::Positive
-                            } else {
-                                Sign::Negative
-                            },
-                            facet: Some(FacetMode {
-                                index: i,
-                                count: it.facets,
-                                normal: f.normal,
-                                normal3: None,
-                                axial: None,
-                            }),
-                        },
-                        column,
-                        capacity: f.offset * mp,
-                    });
+                    let facet = FacetMode {
+                        index: i,
+                        count: it.facets,
+                        normal: f.normal,
+                        normal3: None,
+                        axial: None,
+                    };
+                    modes.push(facet_mode(k, nm, facet, column, f.offset * mp));
                 }
             }
         }
@@ -127,24 +116,37 @@ fn space_modes(
         }
         let lead = if n3 != 0.0 { n3 } else { n2 };
         let bending = n2.hypot(n3);
-        modes.push(ModeSpec {
-            mode: YieldMode {
-                section: k,
-                sign: if lead >= 0.0 {
-                    Sign::Positive
-                } else {
-                    Sign::Negative
-                },
-                facet: Some(FacetMode {
-                    index: i,
-                    count,
-                    normal: [if lead >= 0.0 { bending } else { -bending }, nt],
-                    normal3: Some([n2, n3, nt]),
-                    axial: nn,
-                }),
+        let facet = FacetMode {
+            index: i,
+            count,
+            normal: [if lead >= 0.0 { bending } else { -bending }, nt],
+            normal3: Some([n2, n3, nt]),
+            axial: nn,
+        };
+        modes.push(facet_mode(k, lead, facet, column, offset * mp));
+    }
+}
+
+/// The mode of section `k` on a facet: positive (sagging) when the facet's
+/// leading bending component `lead` is nonnegative.
+fn facet_mode(
+    k: usize,
+    lead: f64,
+    facet: FacetMode,
+    column: Vec<(usize, f64)>,
+    capacity: f64,
+) -> ModeSpec {
+    ModeSpec {
+        mode: YieldMode {
+            section: k,
+            sign: if lead >= 0.0 {
+                Sign::Positive
+            } else {
+                Sign::Negative
             },
-            column,
-            capacity: offset * mp,
-        });
+            facet: Some(facet),
+        },
+        column,
+        capacity,
     }
 }
