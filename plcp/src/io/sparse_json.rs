@@ -294,7 +294,20 @@ pub fn parse_sparse<T: Scalar>(
     let lambda0 = super::convert::<T>("lambda0", "", raw.lambda0.unwrap_or(0.0))?;
     problem = problem.with_range(lambda0, lambda_max)?;
     let n = dim.saturating_sub(p);
-    let warm = match raw.warm_basis {
+    let warm = warm_basis(raw.warm_basis, p, n, file)?;
+    Ok((problem, warm))
+}
+
+/// The warm basis of the file: `"z"` or `"w"` (the free variables and every
+/// `z` or `w`), or a list of names `u<j>`, `z<i>`, `w<i>` (`p` free
+/// variables, `n` pairs).
+fn warm_basis(
+    warm: Option<RawWarm>,
+    p: usize,
+    n: usize,
+    file: &str,
+) -> Result<Option<Vec<Var>>, PlcpError> {
+    let warm = match warm {
         None => None,
         Some(RawWarm::All(s)) => {
             let pair: fn(usize) -> Var = match s.as_str() {
@@ -332,7 +345,7 @@ pub fn parse_sparse<T: Scalar>(
             Some(b)
         }
     };
-    Ok((problem, warm))
+    Ok(warm)
 }
 
 /// Reads a sparse problem file ([`parse_sparse`]).
