@@ -54,6 +54,10 @@ pub(super) fn yield_modes(frame: &Frame, sections: &[CriticalSection]) -> Vec<Mo
     modes
 }
 
+/// A space facet: the normal's bending and torsion components `(n2, n3,
+/// nt)`, its axial component (the polytope only) and its offset.
+type SpaceFacet = ([f64; 3], Option<f64>, f64);
+
 /// The modes of space section `k`: the facets of the bending-torsion
 /// polyhedron, or of the bending-torsion-axial polytope when the member has
 /// a plastic axial force (one more component, the axial force's row).
@@ -66,7 +70,7 @@ fn space_modes(
 ) {
     let mp = sec.plastic_moment;
     // (normal (n2, n3, nt), axial component nn, offset), the facet count and Np
-    let (facets, count, np): (Vec<([f64; 3], Option<f64>, f64)>, usize, f64) = match it.axial {
+    let (facets, count, np): (Vec<SpaceFacet>, usize, f64) = match it.axial {
         Some(np) => {
             let polytope =
                 Polytope::new(it.facets).expect("the scene checked the number of facets");
