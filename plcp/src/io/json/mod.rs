@@ -43,7 +43,7 @@
 //! One JSON object (see [`path_json`] and [`lcp_json`] for the keys). Both
 //! share `lambda_reached`, `pivots`, `breakpoints`, `segments` and `end`, written
 //! by one piece of code (a plain LCP as the one-point path of
-//! [`LcpSolution::as_path`]), so one reader handles both. Numbers
+//! [`LcpSolution::as_path`](crate::LcpSolution::as_path)), so one reader handles both. Numbers
 //! are written through `f64` (an `fx128` value is rounded to the nearest
 //! `f64`). **A number that is not finite (NaN, an infinity) is written as
 //! `null`**, so the output is always valid JSON: `lambda_to` of an unbounded

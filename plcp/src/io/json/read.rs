@@ -244,7 +244,7 @@ fn key_column(text: &str, line: usize, column: usize, key: &str) -> usize {
     }
 }
 
-/// Parses a problem file's bytes (see the [module docs](self)); `file` is the
+/// Parses a problem file's bytes (see the [module docs](super)); `file` is the
 /// name used in error messages. Values are read as `f64` and converted to `T`.
 pub fn parse_plcp<T: Scalar>(bytes: &[u8], file: &str) -> Result<Plcp<T>, PlcpError> {
     let text = utf8_in(bytes, file)?;
@@ -348,7 +348,7 @@ pub fn lambda_max_from_f64<T: Scalar>(v: Option<f64>) -> Result<Option<T>, PlcpE
     }
 }
 
-/// Reads a problem file (see the [module docs](self)).
+/// Reads a problem file (see the [module docs](super)).
 pub fn read_plcp<T: Scalar>(path: &std::path::Path) -> Result<Plcp<T>, PlcpError> {
     let bytes = read_bytes(path)?;
     parse_plcp(&bytes, &path.display().to_string())
