@@ -494,6 +494,7 @@ pub fn write_mtx_dense(
 
 /// Resolves a matrix file named inside a problem file: relative to the
 /// directory of the problem file `file` (as named in messages).
+#[cfg(feature = "json")]
 pub(crate) fn beside(file: &str, name: &str) -> std::path::PathBuf {
     let named = std::path::Path::new(name);
     match std::path::Path::new(file).parent() {
