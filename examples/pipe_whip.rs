@@ -44,6 +44,9 @@ use frames::yield_surface::{Curve, Polygon};
 use frames::{Analysis, AnalysisOptions, Scene, System};
 use std::path::Path;
 
+#[path = "../frames/tests/common/reference.rs"]
+mod reference;
+
 const TP: f64 = 0.906_899_682_117_108_9;
 
 fn g(x: f64) -> String {
@@ -612,37 +615,8 @@ fn first_slowing(
     };
     let (nb, ns, np) = (sys.coordinates.len(), sys.forces.len(), sys.modes.len());
     let n = nb + np;
-    let p = CscMatrix::new_from_triplets(
-        n,
-        n,
-        (0..nb).collect(),
-        (0..nb).collect(),
-        sys.mass.iter().map(|m| m / dt).collect(),
-    );
-    let (mut ii, mut jj, mut vv, mut b) = (vec![], vec![], vec![], vec![]);
-    for r in 0..ns {
-        for j in 0..nb {
-            if sys.a[(r, j)] != 0.0 {
-                ii.push(r);
-                jj.push(j);
-                vv.push(sys.a[(r, j)]);
-            }
-        }
-        for k in 0..np {
-            if sys.tn[(r, k)] != 0.0 {
-                ii.push(r);
-                jj.push(nb + k);
-                vv.push(-sys.tn[(r, k)]);
-            }
-        }
-        b.push(0.0);
-    }
-    for k in 0..np {
-        ii.push(ns + k);
-        jj.push(nb + k);
-        vv.push(-1.0);
-        b.push(0.0);
-    }
+    // the blocks of the tests' reference QP, the mass divided by the step
+    let (p, (ii, jj, vv), b) = reference::qp_blocks(sys, dt);
     let a = CscMatrix::new_from_triplets(ns + np, n, ii, jj, vv);
     let cones: Vec<SupportedConeT<f64>> = vec![ZeroConeT(ns), NonnegativeConeT(np)];
     let mut v = vec![0.0; nb];

@@ -7,7 +7,7 @@ use crate::model::Scene;
 use crate::response::{self, Response};
 use crate::solve::{self, Solution, SolveOptions};
 use crate::target::{self, Arrival};
-use crate::timestep::{Continuation, StepOptions};
+use crate::timestep::Continuation;
 
 /// Options of an analysis.
 #[derive(Clone, Debug, PartialEq)]
@@ -250,23 +250,7 @@ impl Analysis {
     /// assert_eq!(c.run.deactivations().len(), 2);
     /// ```
     pub fn continue_by_time_stepping(&mut self, h_relative: f64) -> Result<bool, FramesError> {
-        if !(h_relative > 0.0 && h_relative < 1.0) {
-            return Err(FramesError::invalid(
-                "time-stepping step",
-                format!("must be a fraction of the response time in (0, 1), got {h_relative}"),
-            ));
-        }
-        let t_end = self.response.time.times.last().copied().unwrap_or(0.0);
-        if t_end <= 0.0 {
-            return Ok(false);
-        }
-        let options = StepOptions {
-            h: h_relative * t_end,
-            t_end,
-            record_every: 0,
-            ..StepOptions::default()
-        };
-        self.time_stepping = Continuation::after_deactivation(self, &options)?;
+        self.time_stepping = Continuation::for_analysis(self, h_relative)?;
         Ok(self.time_stepping.is_some())
     }
 }

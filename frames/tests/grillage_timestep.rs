@@ -5,32 +5,16 @@
 //! the PLCP path's first unloading.
 
 use frames::model::Model;
-use frames::timestep::{
-    compare, plcp_valid_until, StepOptions, StepResponse, StepState, TimeStepping,
-};
-use frames::{Analysis, AnalysisOptions, Scene};
+use frames::timestep::{compare, plcp_valid_until};
+use frames::Analysis;
+
+mod common {
+    pub mod timestep;
+}
+use common::timestep::run;
 
 fn analysis(name: &str) -> Analysis {
-    let path = format!(
-        "{}/../scenes/pipe-whip/{name}.toml",
-        env!("CARGO_MANIFEST_DIR")
-    );
-    Analysis::run(Scene::from_file(path).unwrap(), &AnalysisOptions::default()).unwrap()
-}
-
-fn run(a: &Analysis, h: f64, t_end: f64) -> StepResponse {
-    let options = StepOptions {
-        h,
-        t_end,
-        ..StepOptions::default()
-    };
-    let r = TimeStepping::new(&a.system, &a.scene.history, &options)
-        .unwrap()
-        .run(&StepState::rest(&a.system))
-        .unwrap();
-    assert!(r.outcome.is_completed(), "{:?}", r.outcome);
-    assert!(r.worst_residual() < 1e-10, "{}", r.worst_residual());
-    r
+    common::timestep::analysis(&format!("pipe-whip/{name}"))
 }
 
 #[test]

@@ -6,6 +6,7 @@
 
 mod common {
     pub mod reference;
+    pub mod timestep;
 }
 use frames::{Analysis, AnalysisOptions, Scene};
 use toml::Value;
@@ -392,7 +393,7 @@ fn riser_ramp() -> Analysis {
 
 #[test]
 fn time_stepping_follows_the_path_on_a_space_scene() {
-    use frames::timestep::{compare, plcp_valid_until, StepOptions, StepState, TimeStepping};
+    use frames::timestep::{compare, plcp_valid_until};
     let a = riser_ramp();
     assert!(a.scene.frame.reduction.is_some());
     let (lambda, t) = plcp_valid_until(&a).expect("the path unloads at the elbow");
@@ -402,16 +403,7 @@ fn time_stepping_follows_the_path_on_a_space_scene() {
     let mut errors = Vec::new();
     for steps in [500.0, 1000.0] {
         let h = t_end / steps;
-        let options = StepOptions {
-            h,
-            t_end,
-            ..StepOptions::default()
-        };
-        let r = TimeStepping::new(&a.system, &a.scene.history, &options)
-            .unwrap()
-            .run(&StepState::rest(&a.system))
-            .unwrap();
-        assert!(r.outcome.is_completed(), "{:?}", r.outcome);
+        let r = common::timestep::run_from_rest(&a, h, t_end);
         let c = compare(&a, &r);
         assert_eq!(c.extra_activations, 0, "h = {h}");
         assert!(
@@ -819,7 +811,7 @@ fn first_breakpoint_is_the_static_collapse_load_of_the_polyhedron() {
 /// with `h`.
 #[test]
 fn time_stepping_follows_the_path_on_the_3d_run() {
-    use frames::timestep::{compare, plcp_valid_until, StepOptions, StepState, TimeStepping};
+    use frames::timestep::{compare, plcp_valid_until};
     let src = pipe_whip("space-run.toml");
     let cut = src.find("[history]").unwrap();
     let a = run(&src[..cut], "space-run.toml");
@@ -835,16 +827,7 @@ fn time_stepping_follows_the_path_on_the_3d_run() {
     let mut errors = Vec::new();
     for steps in [200.0, 400.0] {
         let h = t_end / steps;
-        let options = StepOptions {
-            h,
-            t_end,
-            ..StepOptions::default()
-        };
-        let r = TimeStepping::new(&a.system, &a.scene.history, &options)
-            .unwrap()
-            .run(&StepState::rest(&a.system))
-            .unwrap();
-        assert!(r.outcome.is_completed(), "{:?}", r.outcome);
+        let r = common::timestep::run_from_rest(&a, h, t_end);
         let c = compare(&a, &r);
         eprintln!(
             "h = {h:.4}: {} hinges compared, activation error {:.2e}, displacement error {:.2e} of {:.2e}",

@@ -7,7 +7,12 @@ use frames::timestep::{
     compare, mean_load, path_state, Continuation, ModeEventKind, StepOptions, StepResponse,
     StepState, TimeStepping,
 };
-use frames::{Analysis, AnalysisOptions, History, Scene};
+use frames::{Analysis, History};
+
+mod common {
+    pub mod timestep;
+}
+use common::timestep::{analysis, run};
 
 const NO_DEACTIVATION: [&str; 6] = [
     "cantilever",
@@ -18,33 +23,8 @@ const NO_DEACTIVATION: [&str; 6] = [
     "two-storey",
 ];
 
-fn analysis(name: &str) -> Analysis {
-    let path = format!("{}/../scenes/{name}.toml", env!("CARGO_MANIFEST_DIR"));
-    let scene = Scene::from_file(path).unwrap();
-    Analysis::run(scene, &AnalysisOptions::default()).unwrap()
-}
-
 fn response_time(a: &Analysis) -> f64 {
     *a.response.time.times.last().unwrap()
-}
-
-fn run(a: &Analysis, h: f64, t_end: f64) -> StepResponse {
-    let options = StepOptions {
-        h,
-        t_end,
-        ..StepOptions::default()
-    };
-    let r = TimeStepping::new(&a.system, &a.scene.history, &options)
-        .unwrap()
-        .run(&StepState::rest(&a.system))
-        .unwrap();
-    assert!(r.outcome.is_completed(), "{:?}", r.outcome);
-    assert!(
-        r.steps.iter().all(|s| s.status == plcp::Status::Reached),
-        "every step LCP solved"
-    );
-    assert!(r.worst_residual() < 1e-10, "{}", r.worst_residual());
-    r
 }
 
 fn relative_error(a: &Analysis, r: &StepResponse) -> f64 {

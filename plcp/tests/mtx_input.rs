@@ -8,9 +8,9 @@ use plcp::io::mtx::write_mtx_dense;
 use plcp::io::sparse_json::parse_sparse;
 use plcp::Settings;
 use std::path::PathBuf;
-use std::process::Command;
 
-const BIN: &str = env!("CARGO_BIN_EXE_plcp");
+#[path = "common/cli.rs"]
+mod cli;
 
 fn dir(name: &str) -> PathBuf {
     let d = PathBuf::from(env!("CARGO_TARGET_TMPDIR"))
@@ -60,19 +60,6 @@ fn npy_c_order(m: &[Vec<f64>]) -> Vec<u8> {
         }
     }
     out
-}
-
-fn run_cli(file: &std::path::Path) -> serde_json::Value {
-    let out = Command::new(BIN)
-        .args(["solve", file.to_str().unwrap()])
-        .output()
-        .unwrap();
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    serde_json::from_slice(&out.stdout).unwrap()
 }
 
 /// The output without its timing (the only key that may differ).
@@ -128,9 +115,9 @@ fn dense_matrix_market_m_gives_the_inline_path_bit_for_bit() {
     assert!((0..n).all(|i| (0..n).all(|j| a.m()[(i, j)].to_bits() == c.m()[(i, j)].to_bits())));
 
     // the command line: identical reports
-    let va = without_timing(run_cli(&dir.join("inline.json")));
-    let vb = without_timing(run_cli(&dir.join("file.json")));
-    let vc = without_timing(run_cli(&dir.join("npy.json")));
+    let va = without_timing(cli::solve(&dir.join("inline.json")));
+    let vb = without_timing(cli::solve(&dir.join("file.json")));
+    let vc = without_timing(cli::solve(&dir.join("npy.json")));
     assert_eq!(va["status"], "reached");
     assert_eq!(va, vb);
     assert_eq!(va, vc);
@@ -209,10 +196,7 @@ fn bad_matrix_files_are_named() {
         }
         let f = dir.join(format!("{name}.json"));
         std::fs::write(&f, json(name)).unwrap();
-        let out = Command::new(BIN)
-            .args(["solve", f.to_str().unwrap()])
-            .output()
-            .unwrap();
+        let out = cli::solve_output(&f);
         assert_eq!(out.status.code(), Some(2), "{name}");
         let err = String::from_utf8_lossy(&out.stderr);
         assert!(err.contains(want), "{name}: {err}");

@@ -6,9 +6,9 @@ use faer::{Col, Mat};
 use plcp::io::sparse_json::parse_sparse;
 use plcp::{Plcp, Settings, Var};
 use std::path::PathBuf;
-use std::process::Command;
 
-const BIN: &str = env!("CARGO_BIN_EXE_plcp");
+#[path = "common/cli.rs"]
+mod cli;
 
 /// The 5-point Laplacian on an `nx x nx` grid, a bowl obstacle `psi < 0`:
 /// `(triplets, q, d)` of `w = A psi + L h^2 1 + A z`.
@@ -140,16 +140,7 @@ fn triplets_and_csc_give_the_dense_path() {
         close(&lib, &dense);
         // the command line
         let f = scratch("obstacle.json", &text);
-        let out = Command::new(BIN)
-            .args(["solve", f.to_str().unwrap()])
-            .output()
-            .unwrap();
-        assert!(
-            out.status.success(),
-            "{}",
-            String::from_utf8_lossy(&out.stderr)
-        );
-        let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+        let v = cli::solve(&f);
         assert_eq!(v["status"], "reached");
         let cli: Vec<f64> = v["breakpoints"]
             .as_array()

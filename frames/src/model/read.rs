@@ -245,17 +245,7 @@ impl<'a> Reader<'a> {
         let model = *model;
         for m in &raw.member {
             let m = m.get_ref();
-            let id = m.id.get_ref().trim().to_string();
-            if id.is_empty() {
-                return cx.err(m.id.span(), "member id", "must not be empty");
-            }
-            if member_ids.insert(id.clone(), ()).is_some() {
-                return cx.err(
-                    m.id.span(),
-                    format!("member \"{id}\" id"),
-                    format!("duplicate member id \"{id}\""),
-                );
-            }
+            let id = claim_id(cx, member_ids, &m.id, "member", "")?;
             let lookup = |s: &Spanned<String>, key: &str| -> Result<usize, FramesError> {
                 match ids.get(s.get_ref().trim()) {
                     Some(&i) if !frame.nodes[i].generated => Ok(i),
@@ -268,13 +258,7 @@ impl<'a> Reader<'a> {
             };
             let from = lookup(&m.from, "from")?;
             let to = lookup(&m.to, "to")?;
-            let mut keys = Keys {
-                plastic_moment: &m.plastic_moment,
-                plastic_torque: m.plastic_torque.as_ref(),
-                plastic_axial: m.plastic_axial.as_ref(),
-                facets: m.facets.as_ref(),
-                mass_per_length: m.mass_per_length.as_ref(),
-            };
+            let mut keys = strength_keys!(m);
             if space {
                 keys =
                     cx.space_keys(model, &format!("member \"{id}\""), "a member", &m.id, keys)?;
@@ -374,11 +358,9 @@ impl<'a> Reader<'a> {
         Ok(())
     }
 
-    /// The `[[arc]]`s.
-    ///
-    /// About 220 lines, over the house limit of 150: the arc's geometry
-    /// (plane, points, chords) and its member are read in one loop; not
-    /// split yet (issue 16).
+    /// The `[[arc]]`s: the strength (as a member's), the plane
+    /// ([`arc_plane`]), the points, and the node chain and elements
+    /// ([`ArcChain`]).
     pub(super) fn arcs(&mut self) -> Result<(), FramesError> {
         let (space, default_facets) = (self.space, self.default_facets);
         let Reader {
@@ -393,25 +375,15 @@ impl<'a> Reader<'a> {
         let model = *model;
         for arc in &raw.arc {
             let r = arc.get_ref();
-            let id = r.id.get_ref().trim().to_string();
-            if id.is_empty() {
-                return cx.err(r.id.span(), "arc id", "must not be empty");
-            }
-            if member_ids.insert(id.clone(), ()).is_some() {
-                return cx.err(
-                    r.id.span(),
-                    format!("arc \"{id}\" id"),
-                    format!("duplicate member id \"{id}\" (arcs and members share ids)"),
-                );
-            }
+            let id = claim_id(
+                cx,
+                member_ids,
+                &r.id,
+                "arc",
+                " (arcs and members share ids)",
+            )?;
             let table = format!("arc \"{id}\"");
-            let mut keys = Keys {
-                plastic_moment: &r.plastic_moment,
-                plastic_torque: r.plastic_torque.as_ref(),
-                plastic_axial: r.plastic_axial.as_ref(),
-                facets: r.facets.as_ref(),
-                mass_per_length: r.mass_per_length.as_ref(),
-            };
+            let mut keys = strength_keys!(r);
             if space {
                 keys = cx.space_keys(model, &table, "an arc", &r.id, keys)?;
             }
@@ -430,62 +402,7 @@ impl<'a> Reader<'a> {
                     format!("must be {what}, got {centre:?}"),
                 );
             }
-            // a space arc: its plane's normal (global), in-plane axes
-            let normal = match (&r.normal, space) {
-                (Some(n), false) => {
-                    return cx.err(
-                        n.span(),
-                        format!("{table} normal"),
-                        "a key of space scenes only (model = \"space\")",
-                    )
-                }
-                (Some(n), true) => match crate::space::unit_of(n.get_ref()) {
-                    Some(u) => u,
-                    None => {
-                        return cx.err(
-                            n.span(),
-                            format!("{table} normal"),
-                            format!(
-                                "must be three finite numbers [nx, ny, nz], not all zero, got {:?}",
-                                n.get_ref()
-                            ),
-                        )
-                    }
-                },
-                (None, _) => [0.0, 0.0, 1.0],
-            };
-            let reference = match (&r.reference, space) {
-                (Some(g), false) => {
-                    return cx.err(
-                        g.span(),
-                        format!("{table} reference"),
-                        "a key of space scenes only (model = \"space\")",
-                    )
-                }
-                (Some(g), true) => match crate::space::unit_of(g.get_ref()) {
-                    Some(u) => Some((u, g.span())),
-                    None => {
-                        return cx.err(
-                            g.span(),
-                            format!("{table} reference"),
-                            format!(
-                                "must be three finite numbers, not all zero, got {:?}",
-                                g.get_ref()
-                            ),
-                        )
-                    }
-                },
-                (None, _) => None,
-            };
-            let Some(arc_axes) = crate::space::arc_axes(normal, reference.as_ref().map(|g| g.0))
-            else {
-                let span = reference.map_or(r.id.span(), |g| g.1);
-                return cx.err(
-                    span,
-                    format!("{table} reference"),
-                    "the reference direction is along the normal: give one in the arc's plane",
-                );
-            };
+            let (normal, arc_axes) = arc_plane(cx, r, &table, space)?;
             let radius = cx.positive(&r.radius, format!("{table} radius"))?;
             let a0 = cx.finite(&r.start_angle, format!("{table} start_angle"))?;
             let a1 = cx.finite(&r.end_angle, format!("{table} end_angle"))?;
@@ -515,90 +432,17 @@ impl<'a> Reader<'a> {
                 let (s, c) = t.sin_cos();
                 (centre[0] + radius * c, centre[1] + radius * s, 0.0)
             };
-            let mut chain = Vec::with_capacity(n + 1);
-            for k in 0..=n {
-                let end = if k == 0 {
-                    Some((&r.from, "from"))
-                } else if k == n {
-                    Some((&r.to, "to"))
-                } else {
-                    None
-                };
-                let p = point(k);
-                if let Some((Some(node), key)) = end {
-                    let i = match ids.get(node.get_ref().trim()) {
-                        Some(&i) if !frame.nodes[i].generated => i,
-                        _ => {
-                            return cx.err(
-                                node.span(),
-                                format!("{table} {key}"),
-                                format!("unknown node \"{}\"", node.get_ref()),
-                            )
-                        }
-                    };
-                    let nd = &frame.nodes[i];
-                    let off = if general {
-                        (nd.x - p.0).hypot(nd.y - p.1).hypot(nd.z - p.2)
-                    } else {
-                        (nd.x - p.0).hypot(nd.y - p.1)
-                    };
-                    if off > 1e-9 * radius.max(p.0.abs()).max(p.1.abs()).max(p.2.abs()) {
-                        return cx.err(
-                            node.span(),
-                            format!("{table} {key}"),
-                            format!(
-                                "node \"{}\" at ({}, {}) is not the arc's {} point ({}, {})",
-                                nd.id,
-                                nd.x,
-                                nd.y,
-                                if k == 0 { "start" } else { "end" },
-                                p.0,
-                                p.1
-                            ),
-                        );
-                    }
-                    chain.push(i);
-                } else {
-                    let i = cx.generate_node(
-                        frame,
-                        ids,
-                        format!("{id}.{k}"),
-                        p,
-                        end.is_none(),
-                        r.elements.span(),
-                        &format!("{table} elements"),
-                    )?;
-                    chain.push(i);
-                }
-            }
-            let mut dirs = Vec::with_capacity(n);
-            let mut axes = Vec::new();
-            for w in chain.windows(2) {
-                let (a, b) = (&frame.nodes[w[0]], &frame.nodes[w[1]]);
-                let (dx, dy, dz) = (b.x - a.x, b.y - a.y, b.z - a.z);
-                let h = if general {
-                    dx.hypot(dy).hypot(dz)
-                } else {
-                    dx.hypot(dy)
-                };
-                if general && h > 0.0 && h.is_finite() {
-                    // e3 the arc's normal: bending in its plane is about e3
-                    match crate::space::element_axes([dx / h, dy / h, dz / h], Some(normal)) {
-                        Ok(e) => axes.push(e),
-                        Err(why) => {
-                            return cx.err(r.elements.span(), format!("{table} elements"), why)
-                        }
-                    }
-                }
-                if !(h > 0.0 && h.is_finite()) {
-                    return cx.err(
-                        r.elements.span(),
-                        format!("{table} elements"),
-                        format!("an element of zero length between \"{}\" and \"{}\" (too many elements for the radius)", a.id, b.id),
-                    );
-                }
-                dirs.push((h, dx / h, dy / h));
-            }
+            let arc = ArcChain {
+                raw: r,
+                id: &id,
+                table: &table,
+                points: (0..=n).map(point).collect(),
+                radius,
+                general,
+                normal,
+            };
+            let chain = arc.nodes(cx, frame, ids)?;
+            let (dirs, axes) = arc.elements(cx, frame, &chain)?;
             push_member(frame, id, chain, &dirs, &axes, mp, interaction, mu);
         }
         Ok(())
@@ -780,5 +624,248 @@ impl<'a> Reader<'a> {
         };
         scene.check_mechanics()?;
         Ok(scene)
+    }
+}
+
+/// The strength keys of a `[[member]]` or an `[[arc]]` (the same names).
+macro_rules! strength_keys {
+    ($raw:expr) => {
+        Keys {
+            plastic_moment: &$raw.plastic_moment,
+            plastic_torque: $raw.plastic_torque.as_ref(),
+            plastic_axial: $raw.plastic_axial.as_ref(),
+            facets: $raw.facets.as_ref(),
+            mass_per_length: $raw.mass_per_length.as_ref(),
+        }
+    };
+}
+use strength_keys;
+
+/// The id of a `[[member]]` or an `[[arc]]` (`kind`), trimmed: an error when
+/// empty or taken by another member or arc (`note` ends that message).
+fn claim_id(
+    cx: &Ctx,
+    member_ids: &mut HashMap<String, ()>,
+    raw: &Spanned<String>,
+    kind: &str,
+    note: &str,
+) -> Result<String, FramesError> {
+    let id = raw.get_ref().trim().to_string();
+    if id.is_empty() {
+        return cx.err(raw.span(), format!("{kind} id"), "must not be empty");
+    }
+    if member_ids.insert(id.clone(), ()).is_some() {
+        return cx.err(
+            raw.span(),
+            format!("{kind} \"{id}\" id"),
+            format!("duplicate member id \"{id}\"{note}"),
+        );
+    }
+    Ok(id)
+}
+
+/// A space arc's plane: its unit normal (global; `[0, 0, 1]` in a planar
+/// scene) and its in-plane axes, from the keys `normal` and `reference`.
+#[allow(clippy::type_complexity)]
+fn arc_plane(
+    cx: &Ctx,
+    r: &RawArc,
+    table: &str,
+    space: bool,
+) -> Result<([f64; 3], ([f64; 3], [f64; 3])), FramesError> {
+    // a space arc: its plane's normal (global), in-plane axes
+    let normal = match (&r.normal, space) {
+        (Some(n), false) => {
+            return cx.err(
+                n.span(),
+                format!("{table} normal"),
+                "a key of space scenes only (model = \"space\")",
+            )
+        }
+        (Some(n), true) => match crate::space::unit_of(n.get_ref()) {
+            Some(u) => u,
+            None => {
+                return cx.err(
+                    n.span(),
+                    format!("{table} normal"),
+                    format!(
+                        "must be three finite numbers [nx, ny, nz], not all zero, got {:?}",
+                        n.get_ref()
+                    ),
+                )
+            }
+        },
+        (None, _) => [0.0, 0.0, 1.0],
+    };
+    let reference = match (&r.reference, space) {
+        (Some(g), false) => {
+            return cx.err(
+                g.span(),
+                format!("{table} reference"),
+                "a key of space scenes only (model = \"space\")",
+            )
+        }
+        (Some(g), true) => match crate::space::unit_of(g.get_ref()) {
+            Some(u) => Some((u, g.span())),
+            None => {
+                return cx.err(
+                    g.span(),
+                    format!("{table} reference"),
+                    format!(
+                        "must be three finite numbers, not all zero, got {:?}",
+                        g.get_ref()
+                    ),
+                )
+            }
+        },
+        (None, _) => None,
+    };
+    let Some(arc_axes) = crate::space::arc_axes(normal, reference.as_ref().map(|g| g.0)) else {
+        let span = reference.map_or(r.id.span(), |g| g.1);
+        return cx.err(
+            span,
+            format!("{table} reference"),
+            "the reference direction is along the normal: give one in the arc's plane",
+        );
+    };
+    Ok((normal, arc_axes))
+}
+
+/// An arc's points and what its node chain needs to be read.
+struct ArcChain<'a> {
+    raw: &'a RawArc,
+    id: &'a str,
+    /// `arc "id"`, the start of its keys' names in messages.
+    table: &'a str,
+    /// The `n + 1` points of the chain, start to end.
+    points: Vec<(f64, f64, f64)>,
+    radius: f64,
+    /// The general space model (not reduced to a plane).
+    general: bool,
+    normal: [f64; 3],
+}
+
+impl ArcChain<'_> {
+    /// The node chain: the given end nodes (checked to lie on the arc's
+    /// ends) and generated nodes at the other points.
+    fn nodes(
+        &self,
+        cx: &Ctx,
+        frame: &mut Frame,
+        ids: &mut HashMap<String, usize>,
+    ) -> Result<Vec<usize>, FramesError> {
+        let ArcChain {
+            raw: r,
+            id,
+            table,
+            radius,
+            general,
+            ..
+        } = *self;
+        let n = self.points.len() - 1;
+        let mut chain = Vec::with_capacity(n + 1);
+        for k in 0..=n {
+            let end = if k == 0 {
+                Some((&r.from, "from"))
+            } else if k == n {
+                Some((&r.to, "to"))
+            } else {
+                None
+            };
+            let p = self.points[k];
+            if let Some((Some(node), key)) = end {
+                let i = match ids.get(node.get_ref().trim()) {
+                    Some(&i) if !frame.nodes[i].generated => i,
+                    _ => {
+                        return cx.err(
+                            node.span(),
+                            format!("{table} {key}"),
+                            format!("unknown node \"{}\"", node.get_ref()),
+                        )
+                    }
+                };
+                let nd = &frame.nodes[i];
+                let off = if general {
+                    (nd.x - p.0).hypot(nd.y - p.1).hypot(nd.z - p.2)
+                } else {
+                    (nd.x - p.0).hypot(nd.y - p.1)
+                };
+                if off > 1e-9 * radius.max(p.0.abs()).max(p.1.abs()).max(p.2.abs()) {
+                    return cx.err(
+                        node.span(),
+                        format!("{table} {key}"),
+                        format!(
+                            "node \"{}\" at ({}, {}) is not the arc's {} point ({}, {})",
+                            nd.id,
+                            nd.x,
+                            nd.y,
+                            if k == 0 { "start" } else { "end" },
+                            p.0,
+                            p.1
+                        ),
+                    );
+                }
+                chain.push(i);
+            } else {
+                let i = cx.generate_node(
+                    frame,
+                    ids,
+                    format!("{id}.{k}"),
+                    p,
+                    end.is_none(),
+                    r.elements.span(),
+                    &format!("{table} elements"),
+                )?;
+                chain.push(i);
+            }
+        }
+        Ok(chain)
+    }
+
+    /// The elements' lengths and directions (and, in the general space
+    /// model, their axes with `e3` the arc's normal). An error for an element
+    /// of zero length.
+    #[allow(clippy::type_complexity)]
+    fn elements(
+        &self,
+        cx: &Ctx,
+        frame: &Frame,
+        chain: &[usize],
+    ) -> Result<(Vec<(f64, f64, f64)>, Vec<[[f64; 3]; 3]>), FramesError> {
+        let ArcChain {
+            raw: r,
+            table,
+            general,
+            normal,
+            ..
+        } = *self;
+        let n = chain.len() - 1;
+        let mut dirs = Vec::with_capacity(n);
+        let mut axes = Vec::new();
+        for w in chain.windows(2) {
+            let (a, b) = (&frame.nodes[w[0]], &frame.nodes[w[1]]);
+            let (dx, dy, dz) = (b.x - a.x, b.y - a.y, b.z - a.z);
+            let h = if general {
+                dx.hypot(dy).hypot(dz)
+            } else {
+                dx.hypot(dy)
+            };
+            if general && h > 0.0 && h.is_finite() {
+                // e3 the arc's normal: bending in its plane is about e3
+                match crate::space::element_axes([dx / h, dy / h, dz / h], Some(normal)) {
+                    Ok(e) => axes.push(e),
+                    Err(why) => return cx.err(r.elements.span(), format!("{table} elements"), why),
+                }
+            }
+            if !(h > 0.0 && h.is_finite()) {
+                return cx.err(
+                    r.elements.span(),
+                    format!("{table} elements"),
+                    format!("an element of zero length between \"{}\" and \"{}\" (too many elements for the radius)", a.id, b.id),
+                );
+            }
+            dirs.push((h, dx / h, dy / h));
+        }
+        Ok((dirs, axes))
     }
 }

@@ -83,9 +83,11 @@ use plcp::{Method, Plcp, Settings, Status, Var};
 use serde_json::{json, Value};
 
 mod compare;
+mod continuation;
 mod stepper;
 
 pub use compare::*;
+pub use continuation::*;
 pub use stepper::*;
 
 /// Options of a time-stepping run.

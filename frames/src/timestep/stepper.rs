@@ -110,21 +110,7 @@ impl TimeStepping {
         let (h, steps) = (me.h, if span > 0.0 { me.steps } else { 0 });
         let mmax = s.mass.iter().fold(0.0f64, |a, &m| a.max(m));
         let amax = s.load.iter().fold(0.0f64, |a, &l| a.max(l.abs()));
-        let mut flowing: Vec<bool> = {
-            let scale = state
-                .v
-                .iter()
-                .chain(&state.rate)
-                .fold(0.0f64, |a, x| a.max(x.abs()));
-            state
-                .rate
-                .iter()
-                .map(|&r| r > self.options.rate_tol * scale)
-                .collect()
-        };
-        let mut peak = state.rate.clone();
-        let mut decelerated = vec![false; np];
-        let mut rate_drop = vec![0.0; np];
+        let mut flow = Flow::new(&state, self.options.rate_tol);
         let mut out = StepResponse {
             h,
             start: start.clone(),
@@ -151,31 +137,11 @@ impl TimeStepping {
             // the step LCP is homogeneous in its right-hand side: solved for
             // rhs / |rhs| (values of order one whatever h), answer scaled back
             let norm = (0..rhs.nrows()).fold(f64::MIN_POSITIVE, |a, i| a.max(rhs[i].abs()));
-            let mut warm_used = false;
-            let mut pivots = 0;
-            let mut path = None;
-            if let (true, Some((q_old, basis))) = (self.options.warm, &prev) {
-                let q0 = Col::from_fn(rhs.nrows(), |i| q_old[i] / norm);
-                let d = Col::from_fn(rhs.nrows(), |i| (rhs[i] - q_old[i]) / norm);
-                let p = me.solve(&q0, &d, 1.0, Some(basis.clone()))?;
-                pivots += p.info.pivots;
-                if p.status == Status::Reached && p.info.warm_start {
-                    warm_used = true;
-                    path = Some(p);
-                } else {
-                    out.cold_restarts += 1;
-                }
+            let warm = prev.as_ref().filter(|_| self.options.warm);
+            let (path, pivots, warm_used) = me.solve_step(&rhs, norm, warm)?;
+            if warm.is_some() && !warm_used {
+                out.cold_restarts += 1;
             }
-            let path = match path {
-                Some(p) => p,
-                None => {
-                    let zero = Col::<f64>::zeros(rhs.nrows());
-                    let q0 = Col::from_fn(rhs.nrows(), |i| rhs[i] / norm);
-                    let p = me.solve(&q0, &zero, 0.0, None)?;
-                    pivots += p.info.pivots;
-                    p
-                }
-            };
             let residual = path.info.residual.worst();
             out.steps.push(StepRecord {
                 t: t1,
@@ -212,9 +178,8 @@ impl TimeStepping {
                 let r = z[k].max(0.0);
                 state.rate[k] = r;
                 state.plastic[k] += h * r;
-                let now = r > tol;
                 let mode = s.modes[k];
-                let mut event = |kind| {
+                flow.update(k, r, tol, self.options.decel_tol, |kind| {
                     out.events.push(ModeEvent {
                         t: t1,
                         lambda: self.history.lambda(t1),
@@ -224,27 +189,7 @@ impl TimeStepping {
                         sign: mode.sign,
                         y_relative: w[k] / (h * s.capacities[k]),
                     })
-                };
-                if now != flowing[k] {
-                    if now {
-                        event(ModeEventKind::FlowStarted);
-                        peak[k] = 0.0;
-                        decelerated[k] = false;
-                    } else {
-                        event(ModeEventKind::FlowStopped);
-                    }
-                    flowing[k] = now;
-                }
-                if now {
-                    peak[k] = peak[k].max(r);
-                    if !decelerated[k] && r < peak[k] * (1.0 - self.options.decel_tol) {
-                        event(ModeEventKind::FlowDecelerated);
-                        decelerated[k] = true;
-                    }
-                }
-                if peak[k] > 0.0 && (now || peak[k] > tol) {
-                    rate_drop[k] = f64::max(rate_drop[k], (peak[k] - r) / peak[k]);
-                }
+                });
             }
             state.t = t1;
             let record = self.options.record_every;
@@ -261,8 +206,99 @@ impl TimeStepping {
             out.velocity.push(state.v.clone());
         }
         out.end = state;
-        out.rate_drop = rate_drop;
+        out.rate_drop = flow.rate_drop;
         out.seconds = timer.elapsed().as_secs_f64();
         Ok(out)
+    }
+
+    /// One step's LCP for the scaled right-hand side `rhs / norm`: from the
+    /// last step's basis along the segment from its right-hand side `q_old`
+    /// to this one's when `warm` is given, else (or when that path does not
+    /// reach its end from a warm start) solved cold. Returns the path, the
+    /// pivots of both attempts and whether the warm start was used.
+    fn solve_step(
+        &self,
+        rhs: &Col<f64>,
+        norm: f64,
+        warm: Option<&(Col<f64>, Vec<Var>)>,
+    ) -> Result<(plcp::Path<f64>, usize, bool), FramesError> {
+        let mut pivots = 0;
+        if let Some((q_old, basis)) = warm {
+            let q0 = Col::from_fn(rhs.nrows(), |i| q_old[i] / norm);
+            let d = Col::from_fn(rhs.nrows(), |i| (rhs[i] - q_old[i]) / norm);
+            let p = self.solve(&q0, &d, 1.0, Some(basis.clone()))?;
+            pivots += p.info.pivots;
+            if p.status == Status::Reached && p.info.warm_start {
+                return Ok((p, pivots, true));
+            }
+        }
+        let zero = Col::<f64>::zeros(rhs.nrows());
+        let q0 = Col::from_fn(rhs.nrows(), |i| rhs[i] / norm);
+        let p = self.solve(&q0, &zero, 0.0, None)?;
+        pivots += p.info.pivots;
+        Ok((p, pivots, false))
+    }
+}
+
+/// The flow state of each yield mode across the steps: flowing or not, the
+/// peak rate since its flow started, whether it has decelerated, and the
+/// largest relative drop of its rate from the peak.
+struct Flow {
+    flowing: Vec<bool>,
+    peak: Vec<f64>,
+    decelerated: Vec<bool>,
+    rate_drop: Vec<f64>,
+}
+
+impl Flow {
+    /// The modes flowing at the start: a rate above `rate_tol` times the
+    /// largest velocity or rate.
+    fn new(state: &StepState, rate_tol: f64) -> Flow {
+        let np = state.rate.len();
+        let scale = state
+            .v
+            .iter()
+            .chain(&state.rate)
+            .fold(0.0f64, |a, x| a.max(x.abs()));
+        Flow {
+            flowing: state.rate.iter().map(|&r| r > rate_tol * scale).collect(),
+            peak: state.rate.clone(),
+            decelerated: vec![false; np],
+            rate_drop: vec![0.0; np],
+        }
+    }
+
+    /// Mode `k` now rates `r` (flowing when above `tol`): calls `event` for
+    /// a start, a stop or a first deceleration by `decel_tol` below the peak.
+    fn update(
+        &mut self,
+        k: usize,
+        r: f64,
+        tol: f64,
+        decel_tol: f64,
+        mut event: impl FnMut(ModeEventKind),
+    ) {
+        let now = r > tol;
+        if now != self.flowing[k] {
+            if now {
+                event(ModeEventKind::FlowStarted);
+                self.peak[k] = 0.0;
+                self.decelerated[k] = false;
+            } else {
+                event(ModeEventKind::FlowStopped);
+            }
+            self.flowing[k] = now;
+        }
+        if now {
+            self.peak[k] = self.peak[k].max(r);
+            if !self.decelerated[k] && r < self.peak[k] * (1.0 - decel_tol) {
+                event(ModeEventKind::FlowDecelerated);
+                self.decelerated[k] = true;
+            }
+        }
+        let peak = self.peak[k];
+        if peak > 0.0 && (now || peak > tol) {
+            self.rate_drop[k] = f64::max(self.rate_drop[k], (peak - r) / peak);
+        }
     }
 }

@@ -93,10 +93,27 @@ pub fn lp_collapse_load(sys: &System) -> f64 {
 pub fn qp_accelerations(sys: &System, lambda: f64) -> Vec<f64> {
     let (nb, ns, np) = (sys.coordinates.len(), sys.forces.len(), sys.modes.len());
     let n = nb + np;
-    let p =
-        CscMatrix::new_from_triplets(n, n, (0..nb).collect(), (0..nb).collect(), sys.mass.clone());
+    let (p, a, b) = qp_blocks(sys, 1.0);
     let mut q: Vec<f64> = sys.load.iter().map(|l| -lambda * l).collect();
     q.extend(sys.capacities.iter().cloned());
+    conic(p, q, a, b, ns, n)[..nb].to_vec()
+}
+
+/// The blocks of the QP in the unknowns `(a, x)`, `nb + np` of them: `P` the
+/// mass diagonal divided by `dt` (1 for the accelerations; a step `dt` for
+/// the velocity-level step of `examples/pipe_whip.rs`), and the constraints
+/// `A a - T N x = 0` (the first `s` rows, zero cone) and `x >= 0` (`-x + s =
+/// 0`, `s` nonnegative) as `(triplets, b)`.
+pub fn qp_blocks(sys: &System, dt: f64) -> (CscMatrix<f64>, Triplets, Vec<f64>) {
+    let (nb, ns, np) = (sys.coordinates.len(), sys.forces.len(), sys.modes.len());
+    let n = nb + np;
+    let p = CscMatrix::new_from_triplets(
+        n,
+        n,
+        (0..nb).collect(),
+        (0..nb).collect(),
+        sys.mass.iter().map(|m| m / dt).collect(),
+    );
     let (mut ii, mut jj, mut vv, mut b) = (vec![], vec![], vec![], vec![]);
     for r in 0..ns {
         for j in 0..nb {
@@ -121,5 +138,5 @@ pub fn qp_accelerations(sys: &System, lambda: f64) -> Vec<f64> {
         vv.push(-1.0);
         b.push(0.0);
     }
-    conic(p, q, (ii, jj, vv), b, ns, n)[..nb].to_vec()
+    (p, (ii, jj, vv), b)
 }

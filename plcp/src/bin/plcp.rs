@@ -29,7 +29,7 @@
 //! and stdout is empty.
 
 use clap::{ColorChoice, Parser, Subcommand};
-use plcp::io::json::{lambda_max_from_f64, lcp_json, parse_plcp, write_path_json};
+use plcp::io::json::{lambda_max_from_f64, lcp_json, parse_plcp, write_path_json, PathJsonOptions};
 use plcp::io::siconos::read_lcp;
 use plcp::{Method, PlcpError, Precision, Scalar, Settings};
 use std::io::Write;
@@ -270,7 +270,13 @@ impl Report {
     ) -> Self {
         let at = at.to_vec();
         Report::Path(Box::new(move |out: &mut dyn Write| {
-            write_path_json(out, &problem, &path, &at, seconds, segments, &extra)
+            let options = PathJsonOptions {
+                at: &at,
+                solve_seconds: seconds,
+                with_segments: segments,
+                extra: Some(&extra),
+            };
+            write_path_json(out, &problem, &path, &options)
         }))
     }
 

@@ -109,6 +109,37 @@ pub fn parse_mtx(bytes: &[u8], file: &str) -> Result<Mtx, PlcpError> {
         lines: text.lines().enumerate(),
     };
     let header = lines.lines.next().map(|(_, l)| l).unwrap_or("");
+    let h = parse_header(header, file)?;
+    let (rows, cols, nnz) = parse_sizes(&mut lines, text, file, &h)?;
+    let body = Body {
+        file,
+        text,
+        rows,
+        cols,
+        symmetry: h.symmetry,
+        name: &h.name,
+    };
+    let data = if h.dense {
+        MtxData::Dense(body.array(&mut lines)?)
+    } else {
+        MtxData::Triplets(body.coordinate(&mut lines, nnz, h.pattern)?)
+    };
+    Ok(Mtx { rows, cols, data })
+}
+
+/// The header line `%%MatrixMarket matrix <format> <field> <symmetry>`.
+struct Header {
+    /// `array` (else `coordinate`).
+    dense: bool,
+    /// `pattern`: every entry 1.
+    pattern: bool,
+    symmetry: Symmetry,
+    /// The symmetry as written (lower case), for messages.
+    name: String,
+}
+
+/// Reads the header line (line 1).
+fn parse_header(header: &str, file: &str) -> Result<Header, PlcpError> {
     let words: Vec<String> = header
         .split_ascii_whitespace()
         .map(|w| w.to_ascii_lowercase())
@@ -171,6 +202,22 @@ pub fn parse_mtx(bytes: &[u8], file: &str) -> Result<Mtx, PlcpError> {
             ))
         }
     };
+    Ok(Header {
+        dense,
+        pattern,
+        symmetry,
+        name: words[4].clone(),
+    })
+}
+
+/// Reads the size line: `(rows, cols, entries)` (`entries` 0 for an array).
+fn parse_sizes(
+    lines: &mut Lines<'_>,
+    text: &str,
+    file: &str,
+    h: &Header,
+) -> Result<(usize, usize, usize), PlcpError> {
+    let (dense, symmetry) = (h.dense, h.symmetry);
     let Some((size_line, size)) = lines.next_data() else {
         return Err(error(
             file,
@@ -221,14 +268,42 @@ pub fn parse_mtx(bytes: &[u8], file: &str) -> Result<Mtx, PlcpError> {
             file,
             size_line,
             1,
-            format!("a {} matrix must be square, got {rows} x {cols}", words[4]),
+            format!("a {} matrix must be square, got {rows} x {cols}", h.name),
         ));
     }
-    let value = |line: usize, column: usize, f: &str| -> Result<f64, PlcpError> {
-        f.parse::<f64>()
-            .map_err(|_| error(file, line, column, format!("\"{f}\" is not a number")))
-    };
-    if dense {
+    Ok((rows, cols, if dense { 0 } else { dims[2] }))
+}
+
+/// A number at `line`, `column` of `file`.
+fn value(file: &str, line: usize, column: usize, f: &str) -> Result<f64, PlcpError> {
+    f.parse::<f64>()
+        .map_err(|_| error(file, line, column, format!("\"{f}\" is not a number")))
+}
+
+/// What reading the entries needs to know.
+struct Body<'a> {
+    file: &'a str,
+    /// The whole file (its line count places an error at the end).
+    text: &'a str,
+    rows: usize,
+    cols: usize,
+    symmetry: Symmetry,
+    /// The symmetry as written.
+    name: &'a str,
+}
+
+impl Body<'_> {
+    /// The entries of an `array` file, column-major, the other triangle
+    /// filled in.
+    fn array(&self, lines: &mut Lines<'_>) -> Result<Vec<f64>, PlcpError> {
+        let Body {
+            file,
+            text,
+            rows,
+            cols,
+            symmetry,
+            name,
+        } = *self;
         let mut values = vec![0.0; rows * cols];
         // the entries stored: all of them, or the lower triangle (with the
         // diagonal unless skew-symmetric), column by column
@@ -248,7 +323,7 @@ pub fn parse_mtx(bytes: &[u8], file: &str) -> Result<Mtx, PlcpError> {
         let mut read = 0;
         while let Some((line, text)) = lines.next_data() {
             for (column, f) in fields(text) {
-                let v = value(line, column, f)?;
+                let v = value(file, line, column, f)?;
                 let Some((i, j)) = slots.next() else {
                     return Err(error(
                         file,
@@ -256,7 +331,7 @@ pub fn parse_mtx(bytes: &[u8], file: &str) -> Result<Mtx, PlcpError> {
                         column,
                         format!(
                             "more entries than the {expected} a {rows} x {cols} {} array holds",
-                            words[4]
+                            name
                         ),
                     ));
                 };
@@ -276,112 +351,120 @@ pub fn parse_mtx(bytes: &[u8], file: &str) -> Result<Mtx, PlcpError> {
                 1,
                 format!(
                     "{read} entries, but a {rows} x {cols} {} array holds {expected}",
-                    words[4]
+                    name
                 ),
             ));
         }
-        return Ok(Mtx {
+        Ok(values)
+    }
+
+    /// The entries of a `coordinate` file, `nnz` of them announced.
+    fn coordinate(
+        &self,
+        lines: &mut Lines<'_>,
+        nnz: usize,
+        pattern: bool,
+    ) -> Result<Vec<(usize, usize, f64)>, PlcpError> {
+        let Body {
+            file,
+            text,
             rows,
             cols,
-            data: MtxData::Dense(values),
+            symmetry,
+            name,
+        } = *self;
+        let mut triplets = Vec::with_capacity(match symmetry {
+            Symmetry::General => nnz,
+            _ => 2 * nnz,
         });
-    }
-    let nnz = dims[2];
-    let mut triplets = Vec::with_capacity(match symmetry {
-        Symmetry::General => nnz,
-        _ => 2 * nnz,
-    });
-    let mut read = 0;
-    while let Some((line, text)) = lines.next_data() {
-        let mut f = fields(text);
-        let mut index = |name: &str, bound: usize| -> Result<usize, PlcpError> {
-            let Some((column, s)) = f.next() else {
-                return Err(error(
-                    file,
-                    line,
-                    text.len() + 1,
-                    format!("missing {name} index"),
-                ));
-            };
-            match s.parse::<usize>() {
-                Ok(k) if (1..=bound).contains(&k) => Ok(k - 1),
-                _ => Err(error(
-                    file,
-                    line,
-                    column,
-                    format!("{name} index {s}: expected 1..={bound} (1-based)"),
-                )),
-            }
-        };
-        let i = index("row", rows)?;
-        let j = index("column", cols)?;
-        let v = if pattern {
-            1.0
-        } else {
-            let Some((column, s)) = f.next() else {
-                return Err(error(file, line, text.len() + 1, "missing value"));
-            };
-            value(line, column, s)?
-        };
-        if let Some((column, s)) = f.next() {
-            return Err(error(
-                file,
-                line,
-                column,
-                format!("unexpected \"{s}\" after the entry (a complex file is not read)"),
-            ));
-        }
-        if read == nnz {
-            return Err(error(
-                file,
-                line,
-                1,
-                format!("more entries than the {nnz} the size line announces"),
-            ));
-        }
-        read += 1;
-        match symmetry {
-            Symmetry::General => triplets.push((i, j, v)),
-            Symmetry::Symmetric | Symmetry::Skew => {
-                if i < j || (symmetry == Symmetry::Skew && i == j) {
+        let mut read = 0;
+        while let Some((line, text)) = lines.next_data() {
+            let mut f = fields(text);
+            let mut index = |name: &str, bound: usize| -> Result<usize, PlcpError> {
+                let Some((column, s)) = f.next() else {
                     return Err(error(
                         file,
                         line,
-                        1,
-                        format!(
-                            "entry ({}, {}) of a {} file must lie below the diagonal{}",
-                            i + 1,
-                            j + 1,
-                            words[4],
-                            if symmetry == Symmetry::Symmetric {
-                                " or on it"
-                            } else {
-                                ""
-                            }
-                        ),
+                        text.len() + 1,
+                        format!("missing {name} index"),
                     ));
+                };
+                match s.parse::<usize>() {
+                    Ok(k) if (1..=bound).contains(&k) => Ok(k - 1),
+                    _ => Err(error(
+                        file,
+                        line,
+                        column,
+                        format!("{name} index {s}: expected 1..={bound} (1-based)"),
+                    )),
                 }
-                triplets.push((i, j, v));
-                if i != j {
-                    let mirrored = if symmetry == Symmetry::Skew { -v } else { v };
-                    triplets.push((j, i, mirrored));
+            };
+            let i = index("row", rows)?;
+            let j = index("column", cols)?;
+            let v = if pattern {
+                1.0
+            } else {
+                let Some((column, s)) = f.next() else {
+                    return Err(error(file, line, text.len() + 1, "missing value"));
+                };
+                value(file, line, column, s)?
+            };
+            if let Some((column, s)) = f.next() {
+                return Err(error(
+                    file,
+                    line,
+                    column,
+                    format!("unexpected \"{s}\" after the entry (a complex file is not read)"),
+                ));
+            }
+            if read == nnz {
+                return Err(error(
+                    file,
+                    line,
+                    1,
+                    format!("more entries than the {nnz} the size line announces"),
+                ));
+            }
+            read += 1;
+            match symmetry {
+                Symmetry::General => triplets.push((i, j, v)),
+                Symmetry::Symmetric | Symmetry::Skew => {
+                    if i < j || (symmetry == Symmetry::Skew && i == j) {
+                        return Err(error(
+                            file,
+                            line,
+                            1,
+                            format!(
+                                "entry ({}, {}) of a {} file must lie below the diagonal{}",
+                                i + 1,
+                                j + 1,
+                                name,
+                                if symmetry == Symmetry::Symmetric {
+                                    " or on it"
+                                } else {
+                                    ""
+                                }
+                            ),
+                        ));
+                    }
+                    triplets.push((i, j, v));
+                    if i != j {
+                        let mirrored = if symmetry == Symmetry::Skew { -v } else { v };
+                        triplets.push((j, i, mirrored));
+                    }
                 }
             }
         }
+        if read != nnz {
+            return Err(error(
+                file,
+                text.lines().count().max(1),
+                1,
+                format!("{read} entries, but the size line announces {nnz}"),
+            ));
+        }
+        Ok(triplets)
     }
-    if read != nnz {
-        return Err(error(
-            file,
-            text.lines().count().max(1),
-            1,
-            format!("{read} entries, but the size line announces {nnz}"),
-        ));
-    }
-    Ok(Mtx {
-        rows,
-        cols,
-        data: MtxData::Triplets(triplets),
-    })
 }
 
 /// Reads a Matrix Market file ([`parse_mtx`]).
@@ -411,6 +494,7 @@ pub fn write_mtx_dense(
 
 /// Resolves a matrix file named inside a problem file: relative to the
 /// directory of the problem file `file` (as named in messages).
+#[cfg(feature = "json")]
 pub(crate) fn beside(file: &str, name: &str) -> std::path::PathBuf {
     let named = std::path::Path::new(name);
     match std::path::Path::new(file).parent() {

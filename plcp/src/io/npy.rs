@@ -202,6 +202,7 @@ pub fn read_npy(path: &std::path::Path) -> Result<Mtx, PlcpError> {
 
 /// Reads the matrix file a problem file names: `.npy` by its magic bytes,
 /// else Matrix Market ([`super::mtx`]).
+#[cfg(feature = "json")]
 pub(crate) fn read_matrix_file(path: &std::path::Path) -> Result<Mtx, PlcpError> {
     let bytes = super::read_bytes(path)?;
     let file = path.display().to_string();

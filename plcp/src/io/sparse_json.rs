@@ -118,10 +118,56 @@ fn invalid(file: &str, what: impl Into<String>, why: impl Into<String>) -> PlcpE
     }
 }
 
-/// True when the JSON text is the sparse format (it has an `M_sparse` key).
+/// True when the JSON text is the sparse format: the top-level object has an
+/// `M_sparse` key before any `M` key.
+///
+/// Only the top-level keys are read, up to the first `M` or `M_sparse`, and
+/// the values of the keys before it skipped: the dense `M` after them (which
+/// may be 100 MB) is not read, and an `"M_sparse"` inside a `comment` or a
+/// string does not count. Anything that is not such an object is `false`
+/// (the dense reader then names the problem).
+///
+/// ```
+/// use plcp::io::sparse_json::is_sparse_json;
+/// assert!(is_sparse_json(br#"{"comment": "x", "M_sparse": {"n": 1}}"#));
+/// // a key of the comment's value is not a top-level key
+/// assert!(!is_sparse_json(br#"{"comment": {"M_sparse": 1}, "M": [[1]]}"#));
+/// assert!(!is_sparse_json(b"[1, 2"));
+/// ```
 pub fn is_sparse_json(bytes: &[u8]) -> bool {
-    // a vectorised substring search: the file may be a dense M of 100 MB
-    memchr::memmem::find(bytes, b"\"M_sparse\"").is_some()
+    use serde::de::{Deserializer as _, Error as _, IgnoredAny, MapAccess, Visitor};
+    use std::cell::Cell;
+
+    /// Reads keys until `M` or `M_sparse` decides, then stops the parse.
+    struct Keys<'a>(&'a Cell<Option<bool>>);
+
+    impl<'de> Visitor<'de> for Keys<'_> {
+        type Value = ();
+
+        fn expecting(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+            f.write_str("a JSON object")
+        }
+
+        fn visit_map<A: MapAccess<'de>>(self, mut map: A) -> Result<(), A::Error> {
+            while let Some(key) = map.next_key::<String>()? {
+                match key.as_str() {
+                    "M_sparse" | "M" => {
+                        self.0.set(Some(key == "M_sparse"));
+                        // decided: an error ends the parse without reading on
+                        return Err(A::Error::custom("decided"));
+                    }
+                    _ => {
+                        map.next_value::<IgnoredAny>()?;
+                    }
+                }
+            }
+            Ok(())
+        }
+    }
+
+    let decided = Cell::new(None);
+    let _ = serde_json::Deserializer::from_slice(bytes).deserialize_map(Keys(&decided));
+    decided.get().unwrap_or(false)
 }
 
 /// Parses the sparse format: the problem and the warm basis, if one is given.
@@ -248,7 +294,20 @@ pub fn parse_sparse<T: Scalar>(
     let lambda0 = super::convert::<T>("lambda0", "", raw.lambda0.unwrap_or(0.0))?;
     problem = problem.with_range(lambda0, lambda_max)?;
     let n = dim.saturating_sub(p);
-    let warm = match raw.warm_basis {
+    let warm = warm_basis(raw.warm_basis, p, n, file)?;
+    Ok((problem, warm))
+}
+
+/// The warm basis of the file: `"z"` or `"w"` (the free variables and every
+/// `z` or `w`), or a list of names `u<j>`, `z<i>`, `w<i>` (`p` free
+/// variables, `n` pairs).
+fn warm_basis(
+    warm: Option<RawWarm>,
+    p: usize,
+    n: usize,
+    file: &str,
+) -> Result<Option<Vec<Var>>, PlcpError> {
+    let warm = match warm {
         None => None,
         Some(RawWarm::All(s)) => {
             let pair: fn(usize) -> Var = match s.as_str() {
@@ -286,7 +345,7 @@ pub fn parse_sparse<T: Scalar>(
             Some(b)
         }
     };
-    Ok((problem, warm))
+    Ok(warm)
 }
 
 /// Reads a sparse problem file ([`parse_sparse`]).
