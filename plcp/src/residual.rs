@@ -162,24 +162,8 @@ pub fn measure_path<T: Scalar>(problem: &Plcp<T>, path: &mut Path<T>, both_ends:
 
 /// Measures the start of the path and its end point on `problem`;
 /// `path.info.residual` becomes the largest of those and of the breakpoints'
-/// residuals (kept as the trace measured them). On a problem of order at most
-/// [`crate::tolerance::MEASURE_SEGMENT_ENDS_MAX_DIM`] both ends of every
-/// segment are measured too (the breakpoints keep the trace's residuals): the
-/// trace measures its basic values on the scaled system, and the delivered
-/// segments, evaluated on the problem, can be off by more (Wolfe with an
-/// idle free variable: `2.3e-15` reported, `2.5e-12` at the segment ends,
-/// `plcp/tests/mixed.rs`); the report then bounds what the segments give.
+/// residuals (kept as the trace measured them).
 pub fn measure_ends<T: Scalar>(problem: &Plcp<T>, path: &mut Path<T>) {
-    if problem.dim() <= crate::tolerance::MEASURE_SEGMENT_ENDS_MAX_DIM {
-        let kept: Vec<Residual> = path.breakpoints.iter().map(|b| b.residual).collect();
-        measure_path(problem, path, true);
-        let worst = kept.iter().fold(path.info.residual, |a, b| a.max(*b));
-        for (b, r) in path.breakpoints.iter_mut().zip(kept) {
-            b.residual = r;
-        }
-        path.info.residual = worst;
-        return;
-    }
     let mut worst = path
         .breakpoints
         .iter()

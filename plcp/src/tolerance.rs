@@ -20,7 +20,6 @@
 //! | idle refinement | the block basis pauses refining entering columns (then probes, pauses doubling to 64 solves) | [`REFINE_IDLE_RUN`] (`8`) corrections in a row `<= REFINE_IDLE_EPS * eps * max abs(y)` ([`REFINE_IDLE_EPS`] `= 64`) |
 //! | segment evaluation | [`crate::Segment::eval`] returns a negative `z` or `w` inside its segment as zero | `-v <= abs(slope) 64 eps max(1, abs(L)) + 64 eps abs(v_from)` and `-v > sqrt(eps) max(1, max abs(x))` |
 //! | residuals of points | reported ([`crate::residual::residual`]: start, end, `Path::at`, and every breakpoint for Lemke on a Schur reduction or on request, [`crate::residual::measure_path`]) | equation row `r` relative to `max(1, abs(q_r), abs(L d_r), abs(w_r), max_j abs(M_rj x_j))` |
-//! | reported residual | `path.info.residual` ([`crate::residual::measure_ends`]) | the start, the end point, the trace's breakpoint residuals and, on orders up to [`MEASURE_SEGMENT_ENDS_MAX_DIM`] (`100`), both ends of every segment evaluated on the problem |
 //! | residual guard | a path that claims success is downgraded to `ill_conditioned`; the trace stops as `ill_conditioned` at a breakpoint whose residual (after refinement) fails it | largest reported residual `> sqrt(eps)` |
 //! | reduction ties | Lemke on the Schur reduction of a mixed problem: the tie tolerance of the reduced path | `tie_tol_eps` times [`reduction_tie_factor`] (`cond(F)`, at least 1, and the product at most `sqrt(eps)`) |
 //! | covering vector | the start phase's covering vector `c` is brought by a power of two to the scale of the right-hand side, so the artificial variable is dimensionless | `c * 2^(e(max abs(q + L0 d)) - e(max c))`, `e` the binary exponent |
@@ -103,10 +102,3 @@ pub fn reduction_tie_factor<T: Scalar>(cond_f: f64, tie_tol_eps: f64) -> f64 {
         cap
     }
 }
-
-/// The largest order `p + n` whose reported residual
-/// ([`crate::residual::measure_ends`]) includes both ends of every segment,
-/// evaluated on the problem (`O(dim nnz(x))` each: about the path's own cost
-/// on a dense problem, so larger paths measure only their start, end and the
-/// trace's breakpoint residuals).
-pub const MEASURE_SEGMENT_ENDS_MAX_DIM: usize = 100;
