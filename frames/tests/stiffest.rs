@@ -219,3 +219,39 @@ fn stiffest_cantilever_certified_with_segment_precisions() {
         .unwrap();
     assert!(esc.segment_precisions[first..].iter().all(|p| *p == "f128"));
 }
+
+/// Issue 14, "done when": every scene of `scenes/stiff/` is answered with a
+/// success status and certified with `--certify`'s options (the defaults:
+/// f64 escalating to fx128, exact tracing when a small stiff scene's path is
+/// rejected).
+#[test]
+fn every_stiff_scene_is_answered_and_certified() {
+    let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/../scenes/stiff");
+    let mut names: Vec<_> = std::fs::read_dir(dir)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|x| x == "toml"))
+        .collect();
+    names.sort();
+    assert!(names.len() >= 5, "{names:?}");
+    for file in names {
+        let scene = Scene::from_file(&file).unwrap();
+        let a = Analysis::run(
+            scene,
+            &AnalysisOptions {
+                certify: true,
+                ..AnalysisOptions::default()
+            },
+        )
+        .unwrap();
+        let name = file.display();
+        assert!(
+            a.solution.status.is_success(),
+            "{name}: {} {}",
+            a.solution.status.as_str(),
+            a.solution.message
+        );
+        let cert = a.solution.info.certificate.as_ref().expect("a certificate");
+        assert!(cert.failure.is_none(), "{name}: {}", cert.summary());
+    }
+}
