@@ -47,3 +47,30 @@ fn exact_precision_refuses_a_singular_free_block() {
     .unwrap_err();
     assert!(err.to_string().contains("free block"), "{err}");
 }
+
+/// `frames run --certify` (issue 14: certification from the command line):
+/// the text report says the path is certified and shows the exact critical
+/// loads.
+#[cfg(feature = "cli")]
+#[test]
+fn the_command_line_certifies() {
+    let scene = concat!(env!("CARGO_MANIFEST_DIR"), "/../scenes/cantilever.toml");
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_frames"))
+        .args(["run", scene, "--certify"])
+        .output()
+        .expect("run frames");
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        out.status.success(),
+        "{stdout} {}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert!(
+        stdout.contains("certified in exact rational arithmetic"),
+        "{stdout}"
+    );
+    assert!(
+        stdout.contains("exact critical loads: 1, 4, 6, 12"),
+        "{stdout}"
+    );
+}

@@ -169,3 +169,89 @@ fn extremes_chain_success_only_with_the_exact_breakpoints() {
         assert!(rel(*g, *w) <= 1e-10, "{got:?} against {want:?}");
     }
 }
+
+/// Issue 14: the stiffest frame answered and certified with `--certify`'s
+/// options (the defaults: f64 escalating to fx128): `unbounded_ray` with the
+/// six exact breakpoints, a certificate without failure, and the escalation
+/// naming the precision of each segment (f64 first, then fx128; no exact part
+/// is needed here).
+#[test]
+fn stiffest_cantilever_certified_with_segment_precisions() {
+    let path = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../scenes/stiff/stiffest-cantilever.toml"
+    );
+    let scene = Scene::from_file(path).unwrap();
+    let a = Analysis::run(
+        scene,
+        &AnalysisOptions {
+            certify: true,
+            ..AnalysisOptions::default()
+        },
+    )
+    .unwrap();
+    assert_eq!(
+        a.solution.status,
+        plcp::Status::UnboundedRay,
+        "{}",
+        a.solution.message
+    );
+    let cert = a.solution.info.certificate.as_ref().expect("certified");
+    assert!(cert.failure.is_none(), "{:?}", cert.failure);
+    let got = breakpoints(&a);
+    assert_eq!(got.len(), 6, "{got:?}");
+    for (g, e) in got.iter().zip(EXACT) {
+        assert!(rel(*g, e) < 1e-10, "breakpoints {got:?}, exact {EXACT:?}");
+    }
+    let esc = a.solution.info.escalation.as_ref().expect("escalated");
+    println!("{:?} from {}", esc.segment_precisions, esc.lambda);
+    assert!(!esc.segment_precisions.is_empty());
+    assert_eq!(esc.segment_precisions[0], "f64");
+    assert!(
+        esc.segment_precisions.contains(&"f128"),
+        "{:?}",
+        esc.segment_precisions
+    );
+    let first = esc
+        .segment_precisions
+        .iter()
+        .position(|p| *p != "f64")
+        .unwrap();
+    assert!(esc.segment_precisions[first..].iter().all(|p| *p == "f128"));
+}
+
+/// Issue 14, "done when": every scene of `scenes/stiff/` is answered with a
+/// success status and certified with `--certify`'s options (the defaults:
+/// f64 escalating to fx128, exact tracing when a small stiff scene's path is
+/// rejected).
+#[test]
+fn every_stiff_scene_is_answered_and_certified() {
+    let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/../scenes/stiff");
+    let mut names: Vec<_> = std::fs::read_dir(dir)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|x| x == "toml"))
+        .collect();
+    names.sort();
+    assert!(names.len() >= 5, "{names:?}");
+    for file in names {
+        let scene = Scene::from_file(&file).unwrap();
+        let a = Analysis::run(
+            scene,
+            &AnalysisOptions {
+                certify: true,
+                ..AnalysisOptions::default()
+            },
+        )
+        .unwrap();
+        let name = file.display();
+        assert!(
+            a.solution.status.is_success(),
+            "{name}: {} {}",
+            a.solution.status.as_str(),
+            a.solution.message
+        );
+        let cert = a.solution.info.certificate.as_ref().expect("a certificate");
+        assert!(cert.failure.is_none(), "{name}: {}", cert.summary());
+    }
+}

@@ -58,18 +58,94 @@ fn col_to<U: Scalar, T: Scalar>(c: &Col<U>) -> Col<T> {
     Col::from_fn(c.nrows(), |i| T::from_f64(c[i].to_f64()))
 }
 
-/// `fx128` to `T`: `to_f64` rounds the double-double to the nearest `f64`.
-fn down<T: Scalar>(v: fx128) -> T {
+/// A value of precision `U` in `T`, rounded through `f64` (`fx128::to_f64`
+/// rounds the double-double to the nearest `f64`; the exact tracer's values are
+/// `f64` already).
+fn val_to<U: Scalar, T: Scalar>(v: U) -> T {
     T::from_f64(v.to_f64())
 }
 
-fn point_to<T: Scalar>(p: &Point<fx128>) -> Point<T> {
+fn point_to<U: Scalar, T: Scalar>(p: &Point<U>) -> Point<T> {
     Point {
-        lambda: down(p.lambda),
+        lambda: val_to(p.lambda),
         z: col_to(&p.z),
         w: col_to(&p.w),
         u: col_to(&p.u),
     }
+}
+
+/// The one conversion of a continuation's segment to the path's precision
+/// `T`: a warm continuation's first segment starts inside segment `k`, on its
+/// basis, so extended back to `back_to` (segment `k`'s start) it is segment
+/// `k` (the same affine solution).
+fn segment_to<U: Scalar, T: Scalar>(s: &Segment<U>, back_to: Option<f64>) -> Segment<T> {
+    let mut s = s.clone();
+    if let Some(from) = back_to {
+        let from = U::from_f64(from);
+        let back = from - s.lambda_from;
+        for (v, slope) in [
+            (&mut s.z_from, &s.dz),
+            (&mut s.w_from, &s.dw),
+            (&mut s.u_from, &s.du),
+        ] {
+            for i in 0..v.nrows() {
+                v[i] += slope[i] * back;
+            }
+        }
+        s.lambda_from = from;
+    }
+    Segment {
+        lambda_from: val_to(s.lambda_from),
+        lambda_to: val_to(s.lambda_to),
+        unbounded: s.unbounded,
+        basis: s.basis.clone(),
+        z_from: col_to(&s.z_from),
+        dz: col_to(&s.dz),
+        w_from: col_to(&s.w_from),
+        dw: col_to(&s.dw),
+        u_from: col_to(&s.u_from),
+        du: col_to(&s.du),
+    }
+}
+
+/// Keeps `path.segments[..k]` (and, for a warm continuation from `warm_from`,
+/// the breakpoints up to their end), and appends the continuation `rest`
+/// (`fx128` or exact) in `T`: segments, breakpoints, the end, ray and status.
+fn append_rest<U: Scalar, T: Scalar>(
+    path: &mut Path<T>,
+    k: usize,
+    warm_from: Option<f64>,
+    rest: &Path<U>,
+) {
+    path.segments.truncate(k);
+    path.breakpoints
+        .retain(|b| warm_from.is_some() && b.segment <= k);
+    for (j, s) in rest.segments.iter().enumerate() {
+        path.segments
+            .push(segment_to(s, warm_from.filter(|_| j == 0)));
+    }
+    for b in &rest.breakpoints {
+        path.breakpoints.push(Breakpoint {
+            lambda: val_to(b.lambda),
+            entering: b.entering,
+            leaving: b.leaving,
+            degenerate: b.degenerate,
+            turning: b.turning,
+            segment: b.segment + k,
+            residual: b.residual,
+        });
+    }
+    path.status = rest.status;
+    path.lambda_reached = val_to(rest.lambda_reached);
+    path.end = point_to(&rest.end);
+    path.ray = rest.ray.as_ref().map(|r| Ray {
+        start: point_to(&r.start),
+        dz: col_to(&r.dz),
+        dw: col_to(&r.dw),
+        du: col_to(&r.du),
+        dlambda: val_to(r.dlambda),
+    });
+    path.final_basis = rest.final_basis.clone();
 }
 
 fn settings_fx128<T: Scalar>(s: &Settings<T>, warm: Option<Vec<Var>>) -> Settings<fx128> {
@@ -336,60 +412,7 @@ fn feasible_back_to<T: Scalar>(rest: &Path<fx128>, lambda: fx128) -> Result<(), 
 /// Keeps `path.segments[..k]` and the breakpoints up to their end, and appends
 /// `rest` rounded to `T`.
 fn splice<T: Scalar>(path: &mut Path<T>, k: usize, rest: Path<fx128>, esc: &mut Escalation) {
-    path.segments.truncate(k);
-    path.breakpoints.retain(|b| esc.warm && b.segment <= k);
-    for (j, s) in rest.segments.iter().enumerate() {
-        // a warm continuation starts inside segment k, on its basis: its first
-        // segment, extended back, is segment k (the same affine solution)
-        let mut s = s.clone();
-        if esc.warm && j == 0 {
-            let back = fx128::from_f64(esc.lambda) - s.lambda_from;
-            for (from, slope) in [
-                (&mut s.z_from, &s.dz),
-                (&mut s.w_from, &s.dw),
-                (&mut s.u_from, &s.du),
-            ] {
-                for i in 0..from.nrows() {
-                    from[i] += slope[i] * back;
-                }
-            }
-            s.lambda_from = fx128::from_f64(esc.lambda);
-        }
-        path.segments.push(Segment {
-            lambda_from: down(s.lambda_from),
-            lambda_to: down(s.lambda_to),
-            unbounded: s.unbounded,
-            basis: s.basis.clone(),
-            z_from: col_to(&s.z_from),
-            dz: col_to(&s.dz),
-            w_from: col_to(&s.w_from),
-            dw: col_to(&s.dw),
-            u_from: col_to(&s.u_from),
-            du: col_to(&s.du),
-        });
-    }
-    for b in &rest.breakpoints {
-        path.breakpoints.push(Breakpoint {
-            lambda: down(b.lambda),
-            entering: b.entering,
-            leaving: b.leaving,
-            degenerate: b.degenerate,
-            turning: b.turning,
-            segment: b.segment + k,
-            residual: b.residual,
-        });
-    }
-    path.status = rest.status;
-    path.lambda_reached = down(rest.lambda_reached);
-    path.end = point_to(&rest.end);
-    path.ray = rest.ray.as_ref().map(|r| Ray {
-        start: point_to(&r.start),
-        dz: col_to(&r.dz),
-        dw: col_to(&r.dw),
-        du: col_to(&r.du),
-        dlambda: down(r.dlambda),
-    });
-    path.final_basis = rest.final_basis.clone();
+    append_rest(path, k, esc.warm.then_some(esc.lambda), &rest);
     let how = if esc.warm {
         format!(
             "continued in f128 from L = {:e} (warm start from the {} basis there, {} segments of {} kept)",
@@ -546,69 +569,11 @@ pub(crate) fn continue_exactly<T: Scalar>(
     let warm = from != problem.lambda0() || k > 0;
     esc.exact = true;
     esc.lambda_exact = from.to_f64();
-    let t = |v: f64| T::from_f64(v);
-    let col = |c: &Col<f64>| Col::<T>::from_fn(c.nrows(), |i| t(c[i]));
-    path.segments.truncate(k);
     esc.segment_precisions.truncate(k);
-    path.breakpoints.retain(|b| warm && b.segment <= k);
-    for (j, s) in rest.path.segments.iter().enumerate() {
-        let mut s = s.clone();
-        if warm && j == 0 {
-            let back = from.to_f64() - s.lambda_from;
-            for (v, slope) in [
-                (&mut s.z_from, &s.dz),
-                (&mut s.w_from, &s.dw),
-                (&mut s.u_from, &s.du),
-            ] {
-                for i in 0..v.nrows() {
-                    v[i] += slope[i] * back;
-                }
-            }
-            s.lambda_from = from.to_f64();
-        }
-        path.segments.push(Segment {
-            lambda_from: t(s.lambda_from),
-            lambda_to: t(s.lambda_to),
-            unbounded: s.unbounded,
-            basis: s.basis.clone(),
-            z_from: col(&s.z_from),
-            dz: col(&s.dz),
-            w_from: col(&s.w_from),
-            dw: col(&s.dw),
-            u_from: col(&s.u_from),
-            du: col(&s.du),
-        });
-        esc.segment_precisions.push("exact");
-    }
-    for b in &rest.path.breakpoints {
-        path.breakpoints.push(Breakpoint {
-            lambda: t(b.lambda),
-            entering: b.entering,
-            leaving: b.leaving,
-            degenerate: b.degenerate,
-            turning: b.turning,
-            segment: b.segment + k,
-            residual: b.residual,
-        });
-    }
+    esc.segment_precisions
+        .extend(rest.path.segments.iter().map(|_| "exact"));
+    append_rest(path, k, warm.then(|| from.to_f64()), &rest.path);
     let r = &rest.path;
-    path.status = r.status;
-    path.lambda_reached = t(r.lambda_reached);
-    let pt = |p: &Point<f64>| Point {
-        lambda: t(p.lambda),
-        z: col(&p.z),
-        w: col(&p.w),
-        u: col(&p.u),
-    };
-    path.end = pt(&r.end);
-    path.ray = r.ray.as_ref().map(|ray| Ray {
-        start: pt(&ray.start),
-        dz: col(&ray.dz),
-        dw: col(&ray.dw),
-        du: col(&ray.du),
-        dlambda: t(ray.dlambda),
-    });
-    path.final_basis = r.final_basis.clone();
     path.message = format!(
         "continued in exact arithmetic from L = {:e} ({} segments kept) after {}: the exact run ended {}. {}",
         from.to_f64(),

@@ -7,6 +7,7 @@
 //! | name | where | value |
 //! |---|---|---|
 //! | pivot tolerance | an entry `a_i` of the entering column may be a pivot | `abs(a_i) > pivot_tol_eps * eps * max_k abs(a_k)` (default `pivot_tol_eps = 128`) |
+//! | entry rounding | a pivot `y_r` below `sqrt(eps) * max_k abs(y_k)` of the entering column `y = B^{-1} a` must also stand above the rounding of its own entry, bounded before the solve's errors (componentwise, the stale condition estimate plays no part) | `abs(y_r) > pivot_tol_eps * eps * sum_i abs(B^{-1}_ri) (abs(B) abs(y))_i` (one transpose solve, small pivots only; else the row is no candidate) |
 //! | tie tolerance | two ratios `t_i`, `t_j` of the minimum-ratio test are tied (and go to the lexicographic rule) | `abs(t_i - t_j) <= tie_tol_eps * eps * max(1, abs(t_min), scale)` (default `tie_tol_eps = 1e3`) |
 //! | lexicographic tie | two scaled rows of the basis inverse are equal in an entry | same tie tolerance, relative to the largest entry compared |
 //! | zero step | a step is degenerate (zero length) | ratio `<= tie tolerance` |

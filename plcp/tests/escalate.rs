@@ -177,3 +177,81 @@ fn setting_off_or_in_fx128_changes_nothing() {
     assert_eq!(c.status, Status::IllConditioned);
     assert!(c.info.escalation.is_none());
 }
+
+/// Issue 14: the last step of the escalation on a path that reaches `L_max`.
+/// The Neumann case in fx128 (`delta = 1e-5`, `L_max = 20`, the basis
+/// refactorised at every pivot) with fx128 asked to give up at a condition of
+/// `1e-28 / eps = 2e3`: the full block's basis stops it `ill_conditioned`
+/// after six segments (conditions up to 84); with `Settings::escalate_exact`
+/// the exact tracer finishes the path from inside a kept fx128 segment and
+/// reaches `L_max`, with the exact tracer's breakpoints, and the escalation
+/// names each segment's precision (fx128 first, exact from `lambda_exact`
+/// on). The end at `L_max` had residual 0.5 (the exact tracer read its
+/// tableau's basic values without the part-way driver); it is now the last
+/// segment there. The status is not asserted: the exact tail comes back
+/// rounded to `f64`, and its first segment, extended back into the kept
+/// fx128 segment in `f64`, has residual `5e-11`, above fx128's residual
+/// guard (`docs/limits.md`).
+#[test]
+fn exact_tail_reaches_l_max_after_float_segments() {
+    let problem = neumann::<fx128>(6, 1e-5)
+        .with_range(fx128::from_f64(0.0), Some(fx128::from_f64(20.0)))
+        .unwrap();
+    let base = settings::<fx128>(Method::Lemke, 1e-28, true);
+    let plain = plcp::solve(&problem, &base).unwrap();
+    assert_eq!(plain.status, Status::IllConditioned, "{}", plain.message);
+    let path = plcp::solve(
+        &problem,
+        &Settings {
+            escalate_exact: true,
+            ..base
+        },
+    )
+    .unwrap();
+    let esc = path.info.escalation.as_ref().expect("escalated");
+    println!(
+        "{} {:?} {:?} from {}: {}",
+        path.status.as_str(),
+        lambdas(&path),
+        esc.segment_precisions,
+        esc.lambda_exact,
+        path.message
+    );
+    assert!(esc.exact, "{}", esc.exact_note);
+    assert!(
+        path.message.contains("the exact run ended reached"),
+        "{}",
+        path.message
+    );
+    assert_eq!(path.end.lambda.to_f64(), 20.0);
+    let end = plcp::residual::residual(&problem, &path.end);
+    assert!(end.worst() <= 1e-15, "the end at L_max: {end:?}");
+    assert_eq!(esc.segment_precisions.len(), path.segments.len());
+    let float = <fx128 as Scalar>::NAME;
+    let first_exact = esc
+        .segment_precisions
+        .iter()
+        .position(|p| *p == "exact")
+        .expect("an exact part");
+    assert!(first_exact > 0, "{:?}", esc.segment_precisions);
+    assert!(esc.segment_precisions[..first_exact]
+        .iter()
+        .all(|p| *p == float));
+    assert!(esc.segment_precisions[first_exact..]
+        .iter()
+        .all(|p| *p == "exact"));
+    assert_eq!(
+        esc.lambda_exact,
+        path.segments[first_exact].lambda_from.to_f64(),
+        "{:?}",
+        esc.segment_precisions
+    );
+    // the exact tracer's breakpoints
+    let exact = plcp::exact::trace(&problem, &Settings::default()).unwrap();
+    assert_eq!(exact.path.status, Status::Reached, "{}", exact.path.message);
+    assert_eq!(path.breakpoints.len(), exact.breakpoints.len());
+    for (a, b) in path.breakpoints.iter().zip(&exact.breakpoints) {
+        let (a, e) = (a.lambda.to_f64(), plcp::exact::rational_to_f64(b));
+        assert!((a - e).abs() <= 1e-15 * e.abs().max(1.0), "{a} vs {e}");
+    }
+}

@@ -276,3 +276,33 @@ fn exact_continuation_from_a_segment_basis() {
     let bad = exact::trace_from(&problem, &Settings::default(), &[Var::W(0), Var::W(1)], 1.5);
     assert!(bad.is_err());
 }
+
+/// `plcp solve --certify` (issue 14: certification from the command line):
+/// the JSON carries a certificate, certified, with the exact breakpoint `1`.
+#[cfg(feature = "cli")]
+#[test]
+fn the_command_line_certifies() {
+    let dir = std::env::temp_dir().join(format!("plcp-certify-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let file = dir.join("small.json");
+    std::fs::write(
+        &file,
+        r#"{"M": [[2, 1], [1, 2]], "q": [1, 1], "d": [-1, -0.5]}"#,
+    )
+    .unwrap();
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_plcp"))
+        .args(["solve", file.to_str().unwrap(), "--certify"])
+        .output()
+        .expect("run plcp");
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        out.status.success(),
+        "{stdout} {}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let compact: String = stdout.chars().filter(|c| !c.is_whitespace()).collect();
+    assert!(compact.contains(r#""certificate":{"#), "{stdout}");
+    assert!(compact.contains(r#""certified":true"#), "{stdout}");
+    assert!(compact.contains(r#""breakpoints":["1"]"#), "{stdout}");
+    std::fs::remove_dir_all(&dir).ok();
+}

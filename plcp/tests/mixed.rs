@@ -1263,3 +1263,43 @@ fn wolfe_start_phase_tie_with_its_end() {
         assert!(path.info.residual.worst() < 1e-14);
     }
 }
+
+/// The instance on which `f64_idle_free_variable_wolfe_matches_clarabel`
+/// failed once (2026-11-26, an unseeded run): Wolfe's path reported residual
+/// `2.3e-15` (the trace's own, of the basic values on the scaled system) where
+/// its segments, evaluated at their ends on the problem, have `2.5e-12`. The
+/// reported residual should bound what the delivered segments give at their
+/// ends; it does not yet (see the `ignore` reason).
+#[test]
+#[ignore = "the fix (segment ends measured in residual::measure_ends) broke observe.rs: a streamed path (no stored segments) must report the residual bits of the stored one; the streaming side must measure the segment ends too (docs/limits.md)"]
+fn f64_reported_residual_bounds_the_segment_ends() {
+    let m = faer::mat![
+        [0.0, 0.0, 0.0, -0.0, 0.0, 0.0, -0.0],
+        [0.0, 1.609375, 0.203125, -0.6875, 0.0, -0.3125, -0.25],
+        [0.0, 0.203125, 1.328125, -0.28125, 0.0, -1.40625, -0.28125],
+        [-0.0, -0.6875, -0.28125, 1.828125, -0.0, -0.484375, 1.5],
+        [0.0, 0.0, 0.0, -0.0, 0.0, 0.0, -0.0],
+        [0.0, -0.3125, -1.40625, -0.484375, 0.0, 3.109375, -1.78125],
+        [-0.0, -0.25, -0.28125, 1.5, -0.0, -1.78125, 2.875]
+    ];
+    let q = faer::col![0.0, 0.125, 0.375, -0.6875, 0.0, 0.125, -0.3125];
+    let d = faer::col![0.0, -0.25, -0.0625, 0.0, 0.0, -0.375, 0.0625];
+    let problem = Plcp::mixed(m.as_ref(), q.as_ref(), d.as_ref(), 3).unwrap();
+    let path = solve_with(&problem, Method::Wolfe).unwrap();
+    let mut at_ends = plcp::residual::residual(&problem, &path.end).worst();
+    for s in &path.segments {
+        at_ends = at_ends.max(plcp::residual::residual(&problem, &s.eval(s.lambda_from)).worst());
+        if !s.unbounded {
+            at_ends = at_ends.max(plcp::residual::residual(&problem, &s.eval(s.lambda_to)).worst());
+        }
+    }
+    println!(
+        "reported {:?}, at the segment ends {at_ends:e}",
+        path.info.residual
+    );
+    assert!(
+        path.info.residual.worst() >= at_ends,
+        "reported {:?}, at the segment ends {at_ends:e}",
+        path.info.residual
+    );
+}

@@ -433,3 +433,44 @@ fn oracle_finds_the_unique_solution_of_a_p_matrix() {
     let d0 = faer::col![0.0];
     assert!(enumerate(m0.as_ref(), q0.as_ref(), d0.as_ref(), 0, 0.0, 1e-12).is_empty());
 }
+
+/// The 8 x 8 singular PSD instance an unseeded run of `f64_psd_singular` found
+/// (2026-11-26): the path ends on a secondary ray at `L = 9/28` after six
+/// breakpoints (exact tracer, fx128). f64 took a seventh pivot there on an
+/// entry of `7e-14` of a column of one, an exact zero (`|B^{-1}||B||y|` of
+/// that row is 23: rounding), and stopped `ill_conditioned` with residual
+/// 0.71; the pivot tolerance now asks small pivots to stand above their own
+/// rounding. The f64 path must end as the exact one does, and certify.
+#[test]
+fn f64_psd_singular_secondary_ray() {
+    let m = faer::mat![
+        [0.453125, -0.1875, 0.15625, -0.109375, 0.03125, -0.0625, -0.625, 0.875],
+        [-0.1875, 0.140625, 0.0, 0.046875, 0.0, 0.046875, 0.234375, -0.28125],
+        [0.15625, 0.0, 0.125, 0.03125, 0.03125, 0.0, -0.25, 0.375],
+        [-0.109375, 0.046875, 0.03125, 0.96875, 0.09375, 0.015625, 0.015625, -0.34375],
+        [0.03125, 0.0, 0.03125, 0.09375, 0.015625, 0.0, -0.0625, 0.0625],
+        [-0.0625, 0.046875, 0.0, 0.015625, 0.0, 0.015625, 0.078125, -0.09375],
+        [-0.625, 0.234375, -0.25, 0.015625, -0.0625, 0.078125, 0.890625, -1.21875],
+        [0.875, -0.28125, 0.375, -0.34375, 0.0625, -0.09375, -1.21875, 1.8125]
+    ];
+    let q = faer::col![0.0, 0.0, 0.0, 0.0, 0.015625, 0.0, 0.015625, 0.0];
+    let d = faer::col![0.640625, 0.0, -0.203125, 0.0, -0.09375, 0.0, -0.640625, 0.15625];
+    let problem = plcp::Plcp::new(m.as_ref(), q.as_ref(), d.as_ref()).unwrap();
+    let settings = plcp::Settings::default();
+    let exact = plcp::exact::trace(&problem, &settings).unwrap();
+    assert_eq!(exact.path.status, plcp::Status::SecondaryRay);
+    assert_eq!(plcp::exact::short(&exact.lambda_reached), "9/28");
+    let float = plcp::solve(&problem, &settings).unwrap();
+    assert_eq!(float.status, exact.path.status, "{}", float.message);
+    let fb: Vec<f64> = float.breakpoints.iter().map(|b| b.lambda).collect();
+    let eb: Vec<f64> = exact.path.breakpoints.iter().map(|b| b.lambda).collect();
+    assert_eq!(fb.len(), eb.len(), "float {fb:?} exact {eb:?}");
+    for (f, e) in fb.iter().zip(&eb) {
+        assert!(
+            (f - e).abs() <= 1e-12 * e.abs().max(1.0),
+            "float {fb:?} exact {eb:?}"
+        );
+    }
+    let cert = float.certify(&problem);
+    assert!(cert.certified(), "{}", cert.summary());
+}

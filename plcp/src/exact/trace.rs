@@ -684,7 +684,15 @@ impl Run {
         message: String,
         timer: Instant,
     ) -> ExactPath {
-        let end = self.point(t);
+        // reached inside a segment: its driver is part-way, which the
+        // tableau's basic values do not hold (a warm continuation's end at
+        // L_max had residual 0.5): the end is the last segment there
+        let end = match self.segments.last() {
+            Some(s) if status == Status::Reached && s.contains(rational_to_f64(&self.lambda)) => {
+                s.eval(rational_to_f64(&self.lambda))
+            }
+            _ => self.point(t),
+        };
         let final_basis = (status == Status::Reached).then(|| {
             self.segments
                 .last()

@@ -6,7 +6,63 @@ use super::*;
 
 impl<'a, T: Scalar> Engine<'a, T> {
     /// The minimum-ratio test with the lexicographic rule. Returns the row and the step.
+    ///
+    /// A pivot small against its column (below `sqrt(eps)` of the largest
+    /// entry) must also stand above the rounding of its own entry, measured
+    /// before the solve: `pivot_tol_eps * eps * |B^{-1}|_r (|B| |y|)`
+    /// ([`crate::tolerance`], "entry rounding"). Else it is a zero of the exact
+    /// column and its row is no candidate: the tolerance relative to the
+    /// column (times a condition estimate only as fresh as the last
+    /// refactorisation) let an entry of `7e-14` of a column of one, whose
+    /// exact value is zero, block a secondary ray (`plcp/tests/prop_path.rs`,
+    /// `f64_psd_singular_secondary_ray`).
     pub(super) fn ratio_test(&self, col: &Col<T>) -> Option<(usize, T)> {
+        let small = T::eps().sqrt() * col_max_abs(col);
+        let mut excluded: Vec<usize> = Vec::new();
+        loop {
+            let (r, theta) = self.ratio_test_excluding(col, &excluded)?;
+            let entry = col[r].abs();
+            if entry > small
+                || matches!(self.basis[r], Var::Artificial(_))
+                || entry > self.pivot_tol * self.entry_rounding(r, col)
+            {
+                return Some((r, theta));
+            }
+            excluded.push(r);
+        }
+    }
+
+    /// `|B^{-1}|_r (|B| |y|)`, for `y = B^{-1} a` the entering column: what a
+    /// backward-stable solve may get wrong in `y_r`, per unit roundoff
+    /// (componentwise, Oettli-Prager). One transpose solve and a pass over the
+    /// basic columns, spent only on small pivots.
+    fn entry_rounding(&self, r: usize, y: &Col<T>) -> T {
+        let mut e = Col::<T>::zeros(self.dim);
+        e[r] = T::one();
+        let row = self.factor.solve_transpose(&e);
+        let mut by = Col::<T>::zeros(self.dim);
+        for (k, v) in self.basis.iter().enumerate() {
+            let yk = y[k].abs();
+            if yk == T::zero() {
+                continue;
+            }
+            match *v {
+                Var::U(j) => self.m.for_col(j, |i, mij| by[i] += mij.abs() * yk),
+                Var::Z(j) => self.m.for_col(self.p + j, |i, mij| by[i] += mij.abs() * yk),
+                Var::Lambda => {
+                    for i in 0..self.dim {
+                        by[i] += self.d[i].abs() * yk;
+                    }
+                }
+                Var::W(i) => by[self.p + i] += yk,
+                Var::Artificial(k) => by[k] += yk,
+            }
+        }
+        (0..self.dim).fold(T::zero(), |s, i| s + row[i].abs() * by[i])
+    }
+
+    /// [`Self::ratio_test`] with the rows `excluded` no candidates.
+    fn ratio_test_excluding(&self, col: &Col<T>, excluded: &[usize]) -> Option<(usize, T)> {
         let colmax = col_max_abs(col);
         if colmax == T::zero() {
             return None;
@@ -54,7 +110,8 @@ impl<'a, T: Scalar> Engine<'a, T> {
         // the candidates (rows and ratios), recomputed in the second pass
         // rather than collected: no allocation unless several rows tie
         let ratio = |r: usize| {
-            (is_comp(self.basis[r]) && col[r] > ptol).then(|| self.x[r].max(T::zero()) / col[r])
+            (is_comp(self.basis[r]) && col[r] > ptol && !excluded.contains(&r))
+                .then(|| self.x[r].max(T::zero()) / col[r])
         };
         let mut first_cand = None;
         for r in 0..self.dim {
