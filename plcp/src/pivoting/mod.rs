@@ -122,14 +122,6 @@ pub(crate) struct Engine<'a, T: Scalar> {
     /// Iterative-refinement steps taken (at breakpoints and on entering columns).
     pub refinements: usize,
     since_refactor: usize,
-    /// The refactorisation period ran out at the last pivot: the basis is
-    /// rebuilt when the next pivot (or [`Self::retarget`]) needs it, not
-    /// before. A path whose period runs out at its last pivot (n = 100 of
-    /// the everyday family: 50 pivots, period 50; a fifth of the solve) does
-    /// not pay for a factorisation it never uses; the solves in between
-    /// (the entering column, the breakpoint's residual and its refinement)
-    /// use the updated factorisation, as every solve within a period does.
-    refactor_owed: bool,
     /// The last condition estimate says entering columns need a refinement step.
     refine_columns: bool,
     /// The last condition estimate says the basic values need residuals in the
@@ -262,7 +254,6 @@ impl<'a, T: Scalar> Engine<'a, T> {
             refactorisations: 0,
             refinements: 0,
             since_refactor: 0,
-            refactor_owed: false,
             refine_columns: false,
             refine_wide: false,
             refine_inside: false,
@@ -321,7 +312,6 @@ impl<'a, T: Scalar> Engine<'a, T> {
             })?;
         self.refactorisations += 1;
         self.since_refactor = 0;
-        self.refactor_owed = false;
         self.max_cond = self.max_cond.max(cond);
         self.refine_columns = cond * T::eps().to_f64() > self.settings.refine_cond_eps;
         // on a sparse M the wide residual is a pass over the stored entries
@@ -402,15 +392,7 @@ impl<'a, T: Scalar> Engine<'a, T> {
         self.refactorisations = 0;
         self.refinements = 0;
         self.residual_owed = false;
-        if self.refactor_owed {
-            // the period ran out at the last step's last pivot: rebuild now
-            // (it solves the basic values for the new data too)
-            if let Err(why) = self.refactor() {
-                return Some(why);
-            }
-        } else {
-            self.values_from_factor();
-        }
+        self.values_from_factor();
         self.infeasibility()
     }
 

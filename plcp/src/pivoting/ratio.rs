@@ -153,10 +153,6 @@ impl<'a, T: Scalar> Engine<'a, T> {
         col: &Col<T>,
         value: T,
     ) -> Result<(), String> {
-        if self.refactor_owed {
-            // owed since the last pivot (see Engine::refactor_owed)
-            self.refactor()?;
-        }
         let leaving = self.basis[r];
         if self.trace_pivots {
             eprintln!(
@@ -197,7 +193,7 @@ impl<'a, T: Scalar> Engine<'a, T> {
             .factor
             .refactor_due(self.since_refactor, self.settings.refactor_period)
         {
-            self.refactor_owed = true;
+            self.refactor()?;
         }
         Ok(())
     }
