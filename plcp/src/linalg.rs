@@ -9,13 +9,32 @@ use faer::{Col, Mat, MatRef};
 
 /// `A^{-1}` by LU with partial pivoting, with the largest and smallest pivot
 /// magnitudes of `U`; `None` if a pivot is zero or non-finite.
+/// On faer's global parallelism from order 645 ([`inverse_flops`]), on the
+/// calling thread below.
 pub fn inverse<T: Scalar>(a: MatRef<'_, T>) -> Option<(Mat<T>, f64, f64)> {
+    inverse_par(a, par_for(inverse_flops(a.nrows())))
+}
+
+/// The work of an inversion of order `n` in units of [`PAR_MIN_ENTRIES`]'s
+/// entries: `n^3 / 512`, so that inversions go parallel from order 645. (It
+/// was `n^3 / 64`, from order 322: at n = 1000 on the everyday family only
+/// the refactorisations of blocks of order 322..500 used the pool, and the
+/// default ran 10..20 % slower than one thread on the 2-core machine of
+/// `docs/performance.md`.)
+pub fn inverse_flops(n: usize) -> usize {
+    n * n * n / 512
+}
+
+/// [`inverse`] with the given parallelism (native types; the others on the
+/// calling thread): the block basis passes the one its
+/// [`crate::Settings::threads`] asks for.
+pub fn inverse_par<T: Scalar>(a: MatRef<'_, T>, par: faer::Par) -> Option<(Mat<T>, f64, f64)> {
     let n = a.nrows();
     if n == 0 {
         return Some((Mat::zeros(0, 0), 1.0, 1.0));
     }
     if T::NATIVE {
-        let lu = PivLu::new(a, par_for(n * n * n / 64));
+        let lu = PivLu::new(a, par);
         let u = lu.u.as_ref();
         let (umax, umin) = (0..n).fold((0.0f64, f64::INFINITY), |(mx, mn), k| {
             let v = u[(k, k)].to_f64().abs();

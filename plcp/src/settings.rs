@@ -128,8 +128,11 @@ pub struct Settings<T: Scalar> {
     /// and the flush of pending updates). `Some(1)`: the calling thread only;
     /// `Some(k)`: up to `k` threads of rayon's pool; `None` (default): by size,
     /// the calling thread for products under 2^19 (`PAR_MIN_ENTRIES`)
-    /// entries and faer's global parallelism above (so everyday sizes never
-    /// wake a pool). The arithmetic, and so the path, is the same either way.
+    /// entries and inversions of order under 645, faer's global parallelism
+    /// above (so sizes up to n = 1000 on dense families never wake a pool).
+    /// `Some(1)` holds for the inversions at refactorisation too (test
+    /// `plcp/tests/threads.rs`). The arithmetic of the passes, and so the
+    /// path, is the same either way.
     pub threads: Option<usize>,
 }
 

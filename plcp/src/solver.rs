@@ -53,6 +53,8 @@ pub struct Solver<'a, T: Scalar> {
     last: StepEnd<T>,
     /// A zero direction for [`Self::lcp_end`].
     zeros: Col<T>,
+    /// The end residual's work vectors (kept between steps).
+    res: EndResidual<T>,
 }
 
 /// The lean result of one call of the solver ([`Solver::step_end`],
@@ -125,6 +127,7 @@ impl<'a, T: Scalar> Solver<'a, T> {
                 solve_seconds: 0.0,
             },
             zeros: Col::zeros(n),
+            res: EndResidual::default(),
         })
     }
 
@@ -276,7 +279,7 @@ impl<'a, T: Scalar> Solver<'a, T> {
         last.warm = was_warm;
         last.start_pivots = if was_warm { 0 } else { start_pivots };
         last.pivots = eng.pivots;
-        last.residual = crate::residual::residual_parts(self.m, q, d, 0, &last.end);
+        last.residual = self.res.measure(self.m, q, d, &last.end);
         let limit = T::eps().to_f64().sqrt();
         let worst = last.residual.worst();
         if last.status.is_success() && (worst.is_nan() || worst > limit) {
@@ -428,6 +431,122 @@ pub fn warm_up() -> bool {
         s.lcp_end(q.as_ref()).is_ok() && s.step_end(q.as_ref(), d.as_ref()).is_ok()
     });
     reached && stepped
+}
+
+/// The end residual of a lean step on the data, in buffers kept between
+/// steps: the same operations in the same order as
+/// [`crate::residual::residual_parts`] with `p = 0` (so the same numbers to
+/// the last bit; test `lean_steps_equal_full_steps_and_cold_solves`), one
+/// pass over the columns of `M` at the nonzero entries of `z` (`O(n
+/// nnz(z))`), compiled for the machine's vector width through pulp's
+/// runtime dispatch and with no allocation once the buffers have grown.
+/// The full check stays: it is what makes the step's status honest (the
+/// engine's own residuals are of the basic solution it computed, this one of
+/// the point handed to the caller).
+struct EndResidual<T: Scalar> {
+    acc: Vec<T>,
+    big: Vec<T>,
+    colbuf: Vec<T>,
+}
+
+impl<T: Scalar> Default for EndResidual<T> {
+    fn default() -> Self {
+        Self {
+            acc: Vec::new(),
+            big: Vec::new(),
+            colbuf: Vec::new(),
+        }
+    }
+}
+
+impl<T: Scalar> EndResidual<T> {
+    fn measure(
+        &mut self,
+        m: MatRef<'_, T>,
+        q: ColRef<'_, T>,
+        d: ColRef<'_, T>,
+        point: &Point<T>,
+    ) -> crate::path::Residual {
+        pulp::Arch::new().dispatch(EndResidualPass {
+            bufs: self,
+            m,
+            q,
+            d,
+            point,
+        })
+    }
+}
+
+/// [`EndResidual::measure`]'s pass, for pulp's dispatch.
+struct EndResidualPass<'b, 'm, T: Scalar> {
+    bufs: &'b mut EndResidual<T>,
+    m: MatRef<'m, T>,
+    q: ColRef<'m, T>,
+    d: ColRef<'m, T>,
+    point: &'b Point<T>,
+}
+
+impl<T: Scalar> pulp::WithSimd for EndResidualPass<'_, '_, T> {
+    type Output = crate::path::Residual;
+
+    #[inline(always)]
+    fn with_simd<S: pulp::Simd>(self, _simd: S) -> Self::Output {
+        let Self {
+            bufs,
+            m,
+            q,
+            d,
+            point,
+        } = self;
+        let n = m.nrows();
+        let lambda = point.lambda;
+        bufs.acc.clear();
+        bufs.acc.extend((0..n).map(|r| q[r] + lambda * d[r]));
+        bufs.big.clear();
+        bufs.big
+            .extend((0..n).map(|r| T::one().max(q[r].abs()).max((lambda * d[r]).abs())));
+        let (acc, big) = (&mut bufs.acc[..], &mut bufs.big[..]);
+        for j in 0..n {
+            let xj = point.z[j];
+            if xj == T::zero() {
+                continue;
+            }
+            let xa = xj.abs();
+            let col: &[T] = match m.col(j).try_as_col_major() {
+                Some(c) => c.as_slice(),
+                None => {
+                    bufs.colbuf.clear();
+                    bufs.colbuf.extend(m.col(j).iter().copied());
+                    &bufs.colbuf
+                }
+            };
+            for ((a, s), &mij) in acc.iter_mut().zip(big.iter_mut()).zip(col) {
+                *a += mij * xj;
+                *s = (*s).max(mij.abs() * xa);
+            }
+        }
+        let mut eq = 0.0f64;
+        for r in 0..n {
+            let v = acc[r] - point.w[r];
+            let scale = big[r].to_f64().max(point.w[r].to_f64().abs());
+            eq = eq.max(v.to_f64().abs() / scale);
+        }
+        let sz = (0..n).fold(1.0f64, |a, i| a.max(point.z[i].to_f64().abs()));
+        let sw = (0..n).fold(1.0f64, |a, i| a.max(point.w[i].to_f64().abs()));
+        let mut feas = 0.0f64;
+        let mut comp = 0.0f64;
+        for i in 0..n {
+            let zi = point.z[i].to_f64();
+            let wi = point.w[i].to_f64();
+            feas = feas.max(-zi / sz).max(-wi / sw);
+            comp = comp.max((zi * wi).abs() / (sz * sw));
+        }
+        crate::path::Residual {
+            equation: eq,
+            feasibility: feas.max(0.0),
+            complementarity: comp,
+        }
+    }
 }
 
 /// The value of variable `v` at point `pt` (`L` for the parameter).

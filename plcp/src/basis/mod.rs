@@ -285,10 +285,15 @@ fn norm1<T: Scalar>(a: MatRef<'_, T>) -> f64 {
 /// all column scalings (van der Sluis). The singularity test on the pivots of
 /// `U` is made on the scaled matrix for the same reason.
 fn invert<T: Scalar>(b: MatRef<'_, T>, scale: &[f64]) -> Option<(Mat<T>, f64)> {
+    invert_par(b, scale, par_for(crate::linalg::inverse_flops(b.nrows())))
+}
+
+/// [`invert`] with the given parallelism (see [`crate::linalg::inverse_par`]).
+fn invert_par<T: Scalar>(b: MatRef<'_, T>, scale: &[f64], par: faer::Par) -> Option<(Mat<T>, f64)> {
     let dim = b.nrows();
     let sc: Vec<T> = scale.iter().map(|&s| T::from_f64(pow2(s))).collect();
     let bs = Mat::from_fn(dim, dim, |i, j| b[(i, j)] / sc[j]);
-    let (mut inv, umax, umin) = crate::linalg::inverse(bs.as_ref())?;
+    let (mut inv, umax, umin) = crate::linalg::inverse_par(bs.as_ref(), par)?;
     if dim > 0 && umin <= umax * T::eps().to_f64() * dim as f64 {
         return None;
     }

@@ -381,7 +381,9 @@ impl<T: Scalar> BasisFactor<T> for BlockInverse<T> {
             .into_iter()
             .map(pow2)
             .collect();
-        let (inv, cond_s) = invert(s.as_ref(), &nu)?;
+        // threads as Settings::threads says (not faer's global setting)
+        let par = self.par(crate::linalg::inverse_flops(k));
+        let (inv, cond_s) = invert_par(s.as_ref(), &nu, par)?;
         let sinv = self.sinv.get_mut();
         for b in 0..k {
             for a in 0..k {
