@@ -92,3 +92,33 @@ fn a_skipped_real_segment_is_not_bridged() {
     assert_eq!(c.bridges, 0);
     assert_eq!(c.failure.as_ref().unwrap().segment, 1, "{}", c.summary());
 }
+
+/// The Fibonacci block `[[F77, F76], [F76, F75]]` (determinant 1, every
+/// entry exact in f64), `q = (1, 2)`, `d = -1`: its exact path has a
+/// segment `3.6e-31` long after `L = 3.618...`, which f64 and fx128 take as
+/// one degenerate breakpoint. Both paths are certified, with one bridge
+/// (before bridges: rejected, the next basis infeasible by `2.2e-31` at the
+/// rounded start, and `--certify` reported the path `ill_conditioned`).
+#[test]
+fn the_fibonacci_block_is_certified_across_its_short_segment() {
+    let mut f = vec![0.0f64, 1.0];
+    for i in 2..=77 {
+        let next = f[i - 1] + f[i - 2];
+        f.push(next);
+    }
+    assert_eq!(f[77], 5527939700884757.0);
+    let m = Mat::<f64>::from_fn(2, 2, |i, j| f[77 - i - j]);
+    let q = Col::<f64>::from_fn(2, |i| [1.0, 2.0][i]);
+    let d = Col::<f64>::from_fn(2, |_| -1.0);
+    let problem = Plcp::new(m.as_ref(), q.as_ref(), d.as_ref()).unwrap();
+    let path = plcp::solve(&problem, &Settings::default()).unwrap();
+    assert_eq!(path.status, Status::UnboundedRay);
+    let c = exact::certify(&problem, &path);
+    assert!(c.certified(), "{}", c.summary());
+    assert_eq!(c.bridges, 1);
+    let wide = problem.cast::<faer::fx128>();
+    let path = plcp::solve(&wide, &Settings::default()).unwrap();
+    let c = exact::certify(&wide, &path);
+    assert!(c.certified(), "fx128: {}", c.summary());
+    assert_eq!(c.bridges, 1);
+}
