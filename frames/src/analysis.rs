@@ -180,29 +180,19 @@ impl Analysis {
             }
         }
         let reading = hinge::read(&scene.frame, &system, &solution.pieces, solution.tolerance);
-        let mut t_end = options.t_end.unwrap_or_else(|| {
-            response::default_t_end(&scene.history, &reading, options.solve.lambda_max)
-        });
-        // the path is known only up to where it was traced
         let reached = if solution.status == plcp::Status::UnboundedRay {
             f64::INFINITY
         } else {
             solution.lambda_reached
         };
-        if scene.history.lambda(t_end) > reached {
-            t_end = scene.history.time_at(reached).unwrap_or(t_end);
-        }
-        let n = options.samples.max(2);
-        let mut times: Vec<f64> = (0..n).map(|i| t_end * i as f64 / (n - 1) as f64).collect();
-        for b in &reading.breakpoints {
-            if let Some(t) = scene.history.time_at(b.lambda) {
-                if t > 0.0 && t < t_end {
-                    times.push(t);
-                }
-            }
-        }
-        times.sort_by(f64::total_cmp);
-        times.dedup();
+        let times = response::response_times(
+            &scene.history,
+            &reading,
+            options.t_end,
+            options.solve.lambda_max,
+            reached,
+            options.samples,
+        );
         let response = response::build(
             &scene.frame,
             &system,

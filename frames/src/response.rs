@@ -240,6 +240,37 @@ pub fn default_t_end(history: &History, reading: &Reading, lambda_max: Option<f6
     }
 }
 
+/// The times of the time response: `t_end` (`t_end`, or
+/// [`default_t_end`], cut to where the path was traced: `reached`, infinite
+/// for an unbounded ray) in `samples` even steps, with the time of every
+/// breakpoint inside it added, sorted, without repeats.
+pub fn response_times(
+    history: &History,
+    reading: &Reading,
+    t_end: Option<f64>,
+    lambda_max: Option<f64>,
+    reached: f64,
+    samples: usize,
+) -> Vec<f64> {
+    let mut t_end = t_end.unwrap_or_else(|| default_t_end(history, reading, lambda_max));
+    // the path is known only up to where it was traced
+    if history.lambda(t_end) > reached {
+        t_end = history.time_at(reached).unwrap_or(t_end);
+    }
+    let n = samples.max(2);
+    let mut times: Vec<f64> = (0..n).map(|i| t_end * i as f64 / (n - 1) as f64).collect();
+    for b in &reading.breakpoints {
+        if let Some(t) = history.time_at(b.lambda) {
+            if t > 0.0 && t < t_end {
+                times.push(t);
+            }
+        }
+    }
+    times.sort_by(f64::total_cmp);
+    times.dedup();
+    times
+}
+
 /// Builds the response.
 pub fn build(
     frame: &Frame,

@@ -126,28 +126,19 @@ pub fn run(
     }
     let reading = reader.finish();
     // the times, as Analysis::run_watched takes them
-    let mut t_end = options.t_end.unwrap_or_else(|| {
-        response::default_t_end(&scene.history, &reading, options.solve.lambda_max)
-    });
     let reached = if solution.status == plcp::Status::UnboundedRay {
         f64::INFINITY
     } else {
         solution.lambda_reached
     };
-    if scene.history.lambda(t_end) > reached {
-        t_end = scene.history.time_at(reached).unwrap_or(t_end);
-    }
-    let n = options.samples.max(2);
-    let mut times: Vec<f64> = (0..n).map(|i| t_end * i as f64 / (n - 1) as f64).collect();
-    for b in &reading.breakpoints {
-        if let Some(t) = scene.history.time_at(b.lambda) {
-            if t > 0.0 && t < t_end {
-                times.push(t);
-            }
-        }
-    }
-    times.sort_by(f64::total_cmp);
-    times.dedup();
+    let times = response::response_times(
+        &scene.history,
+        &reading,
+        options.t_end,
+        options.solve.lambda_max,
+        reached,
+        options.samples,
+    );
     // what the reports will ask for
     let frame = &scene.frame;
     let mut sel = OutputSelection::default_for_counts(frame.nodes.len(), reading.breakpoints.len());
