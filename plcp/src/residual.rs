@@ -91,6 +91,15 @@ pub fn residual_matrix<T: Scalar>(
         }
         eq = eq.max(v.to_f64().abs() / scale[r]);
     }
+    with_signs(eq, point)
+}
+
+/// The residual of `point` with the equation part `equation` (which depends
+/// on the form: measured by the caller) and the sign parts measured here:
+/// feasibility `max(-z_i / max(1, |z|), -w_i / max(1, |w|), 0)` and
+/// complementarity `max |z_i w_i| / (max(1, |z|) max(1, |w|))`.
+pub(crate) fn with_signs<T: Scalar>(equation: f64, point: &Point<T>) -> Residual {
+    let n = point.z.nrows();
     let sz = (0..n).fold(1.0f64, |a, i| a.max(point.z[i].to_f64().abs()));
     let sw = (0..n).fold(1.0f64, |a, i| a.max(point.w[i].to_f64().abs()));
     let mut feas = 0.0f64;
@@ -102,7 +111,7 @@ pub fn residual_matrix<T: Scalar>(
         comp = comp.max((zi * wi).abs() / (sz * sw));
     }
     Residual {
-        equation: eq,
+        equation,
         feasibility: feas.max(0.0),
         complementarity: comp,
     }

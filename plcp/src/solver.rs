@@ -531,21 +531,7 @@ impl<T: Scalar> pulp::WithSimd for EndResidualPass<'_, '_, T> {
             let scale = big[r].to_f64().max(point.w[r].to_f64().abs());
             eq = eq.max(v.to_f64().abs() / scale);
         }
-        let sz = (0..n).fold(1.0f64, |a, i| a.max(point.z[i].to_f64().abs()));
-        let sw = (0..n).fold(1.0f64, |a, i| a.max(point.w[i].to_f64().abs()));
-        let mut feas = 0.0f64;
-        let mut comp = 0.0f64;
-        for i in 0..n {
-            let zi = point.z[i].to_f64();
-            let wi = point.w[i].to_f64();
-            feas = feas.max(-zi / sz).max(-wi / sw);
-            comp = comp.max((zi * wi).abs() / (sz * sw));
-        }
-        crate::path::Residual {
-            equation: eq,
-            feasibility: feas.max(0.0),
-            complementarity: comp,
-        }
+        crate::residual::with_signs(eq, point)
     }
 }
 
