@@ -32,6 +32,22 @@ pub struct AnalysisOptions {
     pub exact: bool,
 }
 
+impl AnalysisOptions {
+    /// `Err` naming the option that no analysis can take (`t_end` not
+    /// positive and finite).
+    pub fn check(&self) -> Result<(), FramesError> {
+        if let Some(t) = self.t_end {
+            if t.is_nan() || t <= 0.0 || !t.is_finite() {
+                return Err(FramesError::invalid(
+                    "t_end",
+                    format!("must be positive and finite, got {t}"),
+                ));
+            }
+        }
+        Ok(())
+    }
+}
+
 impl Default for AnalysisOptions {
     fn default() -> Self {
         Self {
@@ -123,14 +139,7 @@ impl Analysis {
         options: &AnalysisOptions,
         watch: Option<solve::Watch>,
     ) -> Result<Analysis, FramesError> {
-        if let Some(t) = options.t_end {
-            if t.is_nan() || t <= 0.0 || !t.is_finite() {
-                return Err(FramesError::invalid(
-                    "t_end",
-                    format!("must be positive and finite, got {t}"),
-                ));
-            }
-        }
+        options.check()?;
         let system = System::assemble(&scene.frame);
         let escalate =
             options.escalate && !options.exact && options.solve.precision == plcp::Precision::F64;

@@ -89,14 +89,7 @@ pub fn run(
     nodes: Option<NodePick>,
     watch: Option<solve::Watch>,
 ) -> Result<Analysis, FramesError> {
-    if let Some(t) = options.t_end {
-        if t.is_nan() || t <= 0.0 || !t.is_finite() {
-            return Err(FramesError::invalid(
-                "t_end",
-                format!("must be positive and finite, got {t}"),
-            ));
-        }
-    }
+    options.check()?;
     let system = System::assemble(&scene.frame);
     if !applies(&scene, &system, options) {
         return Analysis::run_watched(scene, options, watch);
