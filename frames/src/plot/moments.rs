@@ -166,31 +166,19 @@ pub(super) fn moments(a: &Analysis, dir: &Path) -> Result<Vec<PathBuf>, FramesEr
 fn curves(a: &Analysis, shown: &[usize], offsets: &[f64], text: &mut String) -> (Curves, Curves) {
     let fr = &a.scene.frame;
     let sys = &a.system;
-    let space = fr.model == Model::Space;
     let diagrams = &a.response.moments_at_breakpoints;
-    // space: the positions in u of each section's M2 and each element's torque
-    let nb = sys.coordinates.len();
-    let (mut pos2, mut post) = (
-        vec![None; sys.sections.len()],
-        vec![None; fr.elements.len()],
-    );
-    if space {
-        for (r, f) in sys.forces.iter().enumerate() {
-            match *f {
-                crate::assemble::MemberForce::Moment2(k) => pos2[k] = Some(nb + r),
-                crate::assemble::MemberForce::Torque(e) => post[e] = Some(nb + r),
-                _ => {}
-            }
-        }
-    }
+    // space: where each section's M2 and each element's torque sit in u
+    let sf = crate::section_forces::SpaceForces::new(sys, fr.elements.len());
     let intervals: Vec<&crate::hinge::Interval> =
         a.reading.intervals.iter().filter(|i| !i.rigid).collect();
     let (mut bending, mut torque): (Curves, Curves) = (Vec::new(), Vec::new());
     for &j in shown {
         let d = &diagrams[j];
         // space: u at the breakpoint, on the piece that starts there
-        let u = match (space, intervals.get(j)) {
-            (true, Some(iv)) => Some(a.solution.pieces[iv.piece_at(d.lambda)].u(d.lambda)),
+        let u = match (&sf, intervals.get(j)) {
+            (Some(sf), Some(iv)) => {
+                Some((sf, a.solution.pieces[iv.piece_at(d.lambda)].u(d.lambda)))
+            }
             _ => None,
         };
         let (mut per_b, mut per_t) = (Vec::new(), Vec::new());
@@ -212,10 +200,10 @@ fn curves(a: &Analysis, shown: &[usize], offsets: &[f64], text: &mut String) -> 
                         d.moments[k]
                     );
                     match &u {
-                        Some(u) => {
-                            let m2 = pos2[k].map_or(0.0, |r| u[r]);
-                            let t = post[e].map_or(0.0, |r| u[r]);
-                            let b = m2.hypot(d.moments[k]);
+                        Some((sf, u)) => {
+                            let m2 = sf.m2(u, k);
+                            let t = sf.torque(u, e);
+                            let b = sf.bending(u, k, d.moments[k]);
                             let _ = write!(text, ",{m2},{b},{t}");
                             pb.push((offsets[mi] + s + ds, b));
                             pt.push((offsets[mi] + s + ds, t));
