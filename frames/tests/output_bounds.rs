@@ -3,7 +3,7 @@
 //! gets everything, and `OutputSelection` asks for more or for specific ones.
 
 use frames::report::{
-    sample_indices, MomentPick, NodePick, OutputSelection, DEFAULT_SAMPLES, SMALL_SCENE,
+    sample_indices, HingeSets, MomentPick, NodePick, OutputSelection, DEFAULT_SAMPLES, SMALL_SCENE,
 };
 use frames::{Analysis, AnalysisOptions, Scene, SolveOptions};
 
@@ -110,6 +110,7 @@ fn a_large_scene_is_bounded_by_default_and_everything_on_request() {
     let some = OutputSelection {
         moments: MomentPick::At(vec![3.0, 5.0]),
         nodes: NodePick::Ids(vec!["B".into(), "A".into()]),
+        hinge_sets: HingeSets::Full,
     };
     let doc = a.to_json_selected(&some).unwrap();
     let (d, _, acc, series) = count(&doc);
@@ -119,8 +120,133 @@ fn a_large_scene_is_bounded_by_default_and_everything_on_request() {
     let bad = OutputSelection {
         moments: MomentPick::All,
         nodes: NodePick::Ids(vec!["nowhere".into()]),
+        hinge_sets: HingeSets::Changes,
     };
     assert!(a.to_json_selected(&bad).unwrap_err().contains("nowhere"));
+}
+
+/// The hinge sets of every interval rebuilt from the changes
+/// (`HingeSets::Changes`: `hinge_changes`) in order, as multisets of their
+/// JSON entries.
+fn rebuilt_sets(doc: &serde_json::Value) -> Vec<[Vec<String>; 2]> {
+    let mut sets: [Vec<String>; 2] = [Vec::new(), Vec::new()];
+    let mut out = Vec::new();
+    for iv in doc["intervals"].as_array().unwrap() {
+        let ch = &iv["hinge_changes"];
+        assert!(iv.get("accelerating").is_none() && iv.get("constant_rate").is_none());
+        for (set, key) in sets.iter_mut().zip(["accelerating", "constant_rate"]) {
+            for gone in ch[key]["removed"].as_array().unwrap() {
+                let at = set.iter().position(|e| *e == gone.to_string());
+                set.remove(at.expect("a removed hinge was in the set"));
+            }
+            for new in ch[key]["added"].as_array().unwrap() {
+                assert!(!set.contains(&new.to_string()), "added twice: {new}");
+                set.push(new.to_string());
+            }
+        }
+        out.push(sets.clone().map(|mut s| {
+            s.sort();
+            s
+        }));
+    }
+    out
+}
+
+/// The full lists of every interval, as multisets of their JSON entries.
+fn full_sets(doc: &serde_json::Value) -> Vec<[Vec<String>; 2]> {
+    let list = |v: &serde_json::Value| {
+        let mut s: Vec<String> = v
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|e| e.to_string())
+            .collect();
+        s.sort();
+        s
+    };
+    doc["intervals"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|iv| [list(&iv["accelerating"]), list(&iv["constant_rate"])])
+        .collect()
+}
+
+/// A large scene writes each interval's hinge sets as changes by default (and
+/// says so), a small one the full lists; the lists rebuilt from the changes
+/// are the full lists, interval by interval, on every scene in `scenes/` and
+/// on a cantilever whose hinge travels; everything else in the document is
+/// the same.
+#[test]
+fn hinge_changes_rebuild_the_full_lists() {
+    let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/../scenes");
+    let mut analyses: Vec<Analysis> = std::fs::read_dir(dir)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|x| x == "toml"))
+        .map(|p| Analysis::run(Scene::from_file(&p).unwrap(), &AnalysisOptions::default()).unwrap())
+        .collect();
+    assert!(analyses.len() >= 5);
+    for a in &analyses {
+        assert_eq!(
+            OutputSelection::default_for(a).hinge_sets,
+            HingeSets::Full,
+            "{}",
+            a.scene.file
+        );
+    }
+    let large = cantilever(SMALL_SCENE + 50);
+    assert_eq!(
+        OutputSelection::default_for(&large).hinge_sets,
+        HingeSets::Changes
+    );
+    analyses.push(large);
+    let mut grew = false;
+    for a in &analyses {
+        let full = a.to_json_selected(&OutputSelection::all()).unwrap();
+        let changes = OutputSelection {
+            hinge_sets: HingeSets::Changes,
+            ..OutputSelection::all()
+        };
+        let mut doc = a.to_json_selected(&changes).unwrap();
+        let sets = full_sets(&full);
+        assert_eq!(rebuilt_sets(&doc), sets, "{}", a.scene.file);
+        grew |= sets.iter().any(|s| s[1].len() > 10);
+        assert!(doc["output"]["hinge_sets"]
+            .as_str()
+            .unwrap()
+            .contains("--hinge-sets full"));
+        // the rest unchanged
+        let mut full = full;
+        full["output"].as_object_mut().unwrap().remove("hinge_sets");
+        doc["output"].as_object_mut().unwrap().remove("hinge_sets");
+        for (d, f) in doc["intervals"]
+            .as_array_mut()
+            .unwrap()
+            .iter_mut()
+            .zip(full["intervals"].as_array_mut().unwrap())
+        {
+            d.as_object_mut().unwrap().remove("hinge_changes");
+            let f = f.as_object_mut().unwrap();
+            f.remove("accelerating");
+            f.remove("constant_rate");
+        }
+        assert_eq!(doc, full, "{}", a.scene.file);
+        assert!(full_sets_absent(
+            &a.to_json_selected(&OutputSelection::all()).unwrap()
+        ));
+    }
+    assert!(grew, "no scene with a long constant-rate list");
+}
+
+/// The full selection writes the lists and no changes.
+fn full_sets_absent(doc: &serde_json::Value) -> bool {
+    doc["output"].get("hinge_sets").is_none()
+        && doc["intervals"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .all(|iv| iv.get("hinge_changes").is_none() && iv["constant_rate"].is_array())
 }
 
 #[test]
@@ -181,6 +307,7 @@ fn two_passes_give_the_reports_of_the_whole_analysis() {
             OutputSelection {
                 moments: MomentPick::Count(3),
                 nodes: NodePick::Ids(vec!["B".into(), "A".into()]),
+                hinge_sets: HingeSets::Changes,
             },
         ),
         (
@@ -189,6 +316,7 @@ fn two_passes_give_the_reports_of_the_whole_analysis() {
             OutputSelection {
                 moments: MomentPick::At(vec![4.0, 6.5]),
                 nodes: NodePick::Count(7),
+                hinge_sets: HingeSets::Full,
             },
         ),
         (

@@ -73,6 +73,11 @@ enum Command {
         /// or node ids A,B,... Default: all up to 200 nodes, else 20.
         #[arg(long, value_name = "all|N|ID,ID,...", value_parser = parse_nodes)]
         nodes: Option<frames::report::NodePick>,
+        /// JSON hinge sets per interval: full (the lists) or changes (what
+        /// starts and stops; linear in the events). Default: full up to 200
+        /// nodes, else changes.
+        #[arg(long, value_name = "full|changes", value_parser = parse_hinge_sets)]
+        hinge_sets: Option<frames::report::HingeSets>,
     },
     /// Print the mixed PLCP of system (9) as plcp's JSON input.
     Export {
@@ -102,6 +107,16 @@ fn parse_precision(s: &str) -> Result<FramePrecision, String> {
     s.parse::<Precision>()
         .map(FramePrecision::Float)
         .map_err(|_| format!("unknown precision '{s}': expected f32, f64, f128 or exact"))
+}
+
+fn parse_hinge_sets(s: &str) -> Result<frames::report::HingeSets, String> {
+    match s {
+        "full" => Ok(frames::report::HingeSets::Full),
+        "changes" => Ok(frames::report::HingeSets::Changes),
+        _ => Err(format!(
+            "unknown hinge sets '{s}': expected full or changes"
+        )),
+    }
 }
 
 fn parse_moments(s: &str) -> Result<frames::report::MomentPick, String> {
@@ -161,6 +176,7 @@ fn run(cli: Cli) -> Result<(), FramesError> {
             step,
             moments,
             nodes,
+            hinge_sets,
         } => {
             let scene = Scene::from_file(&scene)?;
             let options = AnalysisOptions {
@@ -237,6 +253,9 @@ fn run(cli: Cli) -> Result<(), FramesError> {
                 }
                 if let Some(n) = nodes {
                     sel.nodes = n;
+                }
+                if let Some(h) = hinge_sets {
+                    sel.hinge_sets = h;
                 }
                 let mut doc = analysis
                     .json_report(&sel)

@@ -2,7 +2,7 @@
 //! and [`JsonReport`], the same document written part by part.
 
 use super::num;
-use super::OutputSelection;
+use super::{HingeSets, OutputSelection};
 use crate::analysis::Analysis;
 use crate::hinge::{section_name, EventKind, HingeEvent};
 use serde_json::{json, Map, Value};
@@ -95,6 +95,12 @@ impl Analysis {
             "interval_moments": sel.describe("intervals with moment pieces", n_interval_sel, interval_lambdas.len(), "--moments"),
             "nodes": sel.describe("nodes with accelerations and series", node_sel.len(), node_ids.len(), "--nodes"),
         });
+        let mut output = output;
+        if sel.hinge_sets == HingeSets::Changes {
+            output["hinge_sets"] = json!(
+                "changes per interval (hinge_changes: added/removed against the interval before; --hinge-sets full for the lists)"
+            );
+        }
         let mut report = JsonReport { parts: Vec::new() };
         for (key, part) in [
             ("scene", Part::Value(json!(self.scene.file))),
@@ -125,7 +131,7 @@ impl Analysis {
             ("hinges", Part::Value(json!(self.hinges_json()))),
             (
                 "intervals",
-                self.intervals_part(node_sel.clone(), interval_sel),
+                self.intervals_part(node_sel.clone(), interval_sel, sel.hinge_sets),
             ),
             ("moments_at_breakpoints", self.diagrams_part(diagram_sel)),
             ("targets", Part::Value(json!(self.targets_json()))),
@@ -259,32 +265,64 @@ impl Analysis {
     /// The `intervals`, built one at a time as they are written (the part
     /// owns its selections, shared, as each pass of the serialiser makes a
     /// new iterator).
-    fn intervals_part(&self, node_sel: Vec<usize>, interval_sel: Vec<usize>) -> Part<'_> {
+    fn intervals_part(
+        &self,
+        node_sel: Vec<usize>,
+        interval_sel: Vec<usize>,
+        hinge_sets: HingeSets,
+    ) -> Part<'_> {
         let node_sel = std::rc::Rc::new(node_sel);
         let interval_sel = std::rc::Rc::new(interval_sel);
         Part::seq(move || {
             let node_sel = node_sel.clone();
             let interval_sel = interval_sel.clone();
-            self.reading
-                .intervals
+            let intervals = &self.reading.intervals;
+            intervals
                 .iter()
                 .zip(&self.response.intervals)
                 .enumerate()
                 .map(move |(k, (iv, r))| {
                     let with_moments = interval_sel.binary_search(&k).is_ok();
-                    self.interval_json(iv, r, &node_sel, with_moments)
+                    let sets = match hinge_sets {
+                        HingeSets::Full => vec![
+                            ("accelerating", json!(self.group_nodes(&iv.accelerating))),
+                            ("constant_rate", json!(self.group_nodes(&iv.constant_rate))),
+                        ],
+                        HingeSets::Changes => {
+                            let before = k.checked_sub(1).map(|j| &intervals[j]);
+                            let change = |now: &[usize], was: Option<&[usize]>| {
+                                let (added, removed) = set_changes(was.unwrap_or(&[]), now);
+                                json!({
+                                    "added": self.group_nodes(&added),
+                                    "removed": self.group_nodes(&removed),
+                                })
+                            };
+                            let acc = before.map(|b| &b.accelerating[..]);
+                            let cr = before.map(|b| &b.constant_rate[..]);
+                            vec![(
+                                "hinge_changes",
+                                json!({
+                                    "accelerating": change(&iv.accelerating, acc),
+                                    "constant_rate": change(&iv.constant_rate, cr),
+                                }),
+                            )]
+                        }
+                    };
+                    self.interval_json(iv, r, &node_sel, with_moments, sets)
                 })
         })
     }
 
-    /// One entry of `intervals`: hinge sets, the accelerations of the nodes
-    /// `node_sel`, and (`with_moments`) the member forces piece by piece.
+    /// One entry of `intervals`: the hinge sets `sets` (keys and values), the
+    /// accelerations of the nodes `node_sel`, and (`with_moments`) the member
+    /// forces piece by piece.
     fn interval_json(
         &self,
         iv: &crate::hinge::Interval,
         r: &crate::response::IntervalResponse,
         node_sel: &[usize],
         with_moments: bool,
+        sets: Vec<(&str, Value)>,
     ) -> Value {
         let fr = &self.scene.frame;
         let mut acc = Map::new();
@@ -319,18 +357,20 @@ impl Analysis {
             [one] => (one["moments"].clone(), one["second_forces"].clone()),
             _ => (Value::Null, Value::Null),
         };
-        json!({
+        let mut o = json!({
             "lambda_from": num(iv.lambda_from),
             "lambda_to": num(iv.lambda_to),
             "rigid": iv.rigid,
-            "accelerating": self.group_nodes(&iv.accelerating),
-            "constant_rate": self.group_nodes(&iv.constant_rate),
             "accelerations": acc,
             "moments": moments,
             "second_forces": second_forces,
             "pieces": pieces,
             "residual": {"equation": r.residual.equation, "feasibility": r.residual.feasibility, "complementarity": r.residual.complementarity},
-        })
+        });
+        for (key, value) in sets {
+            o[key] = value;
+        }
+        o
     }
 
     /// The `moments_at_breakpoints` selected by `diagram_sel`, built one at a
@@ -531,6 +571,36 @@ impl Analysis {
 }
 
 /// The sign conventions of a model (`conventions` of the JSON report).
+/// What `now` adds to `was` and what it removes from it; both sorted
+/// (a reading pushes the groups of a set in increasing order), and so are
+/// the two lists returned.
+fn set_changes(was: &[usize], now: &[usize]) -> (Vec<usize>, Vec<usize>) {
+    let (mut added, mut removed) = (Vec::new(), Vec::new());
+    let (mut i, mut j) = (0, 0);
+    loop {
+        match (was.get(i), now.get(j)) {
+            (None, None) => break,
+            (Some(a), Some(b)) if a == b => {
+                i += 1;
+                j += 1;
+            }
+            (Some(a), Some(b)) if a > b => {
+                added.push(*b);
+                j += 1;
+            }
+            (Some(a), _) => {
+                removed.push(*a);
+                i += 1;
+            }
+            (None, Some(b)) => {
+                added.push(*b);
+                j += 1;
+            }
+        }
+    }
+    (added, removed)
+}
+
 fn conventions(model: crate::model::Model) -> &'static str {
     match model {
         crate::model::Model::Planar => "bending moments sagging-positive in each element's axes (local y = member direction turned 90 degrees counter-clockwise); sign of a section = sign of its moment at yield (for a facet of a yield polygon: the sign of the normal's bending component; the facet and its unit normal in (M/Mp, N/Np) are given); end = end of the element the section sits at; affine values are [base, slope] with value = base + slope * lambda",

@@ -27,7 +27,7 @@ mod wording;
 
 pub use json::JsonReport;
 pub use selection::{
-    sample_indices, MomentPick, NodePick, OutputSelection, DEFAULT_SAMPLES, SMALL_SCENE,
+    sample_indices, HingeSets, MomentPick, NodePick, OutputSelection, DEFAULT_SAMPLES, SMALL_SCENE,
 };
 
 use serde_json::{json, Value};
