@@ -89,6 +89,21 @@ pub fn run(
     nodes: Option<NodePick>,
     watch: Option<solve::Watch>,
 ) -> Result<Analysis, FramesError> {
+    run_in_passes(scene, options, moments, nodes, watch.clone(), watch)
+}
+
+/// [`run`], told per segment of the first pass (and of an analysis run
+/// whole instead) to `watch` and per segment of the second pass to
+/// `second`, so that a display can say which pass it is in (`frames run`'s
+/// progress line).
+pub fn run_in_passes(
+    scene: Scene,
+    options: &AnalysisOptions,
+    moments: Option<MomentPick>,
+    nodes: Option<NodePick>,
+    watch: Option<solve::Watch>,
+    second: Option<solve::Watch>,
+) -> Result<Analysis, FramesError> {
     options.check()?;
     let system = System::assemble(&scene.frame);
     if !applies(&scene, &system, options) {
@@ -303,7 +318,7 @@ pub fn run(
     let mut next_window = 0;
     let mut retained: HashMap<usize, Piece> = HashMap::new();
     let mut same = true;
-    solve::trace_pieces(&system, &options.solve, escalate, None, |k, p| {
+    solve::trace_pieces(&system, &options.solve, escalate, second, |k, p| {
         same &= ranges.get(k).is_some_and(|r| {
             r.0.to_bits() == p.lambda_from.to_bits() && r.1.to_bits() == p.lambda_to.to_bits()
         });

@@ -195,25 +195,37 @@ fn run(cli: Cli) -> Result<(), FramesError> {
                 ..AnalysisOptions::default()
             };
             progress.message("tracing the path of system (9)");
-            // per segment: where the trace stands (only drawn on a terminal)
-            let watch = plcp::progress::enabled(cli.quiet).then(|| {
-                let bar = progress.clone();
-                let w: frames::solve::Watch =
-                    std::rc::Rc::new(std::cell::RefCell::new(move |t: &frames::solve::Tick| {
-                        bar.message(&format!(
-                            "tracing system (9): Lambda = {:.6e}, {} pivots, {} breakpoints",
-                            t.lambda, t.pivots, t.breakpoints
-                        ))
-                    }));
-                w
-            });
             // a large scene without plots or time stepping: in two passes
             // over the path, keeping what the report asks for (memory linear
             // in the structure; frames::stream)
             let large = scene.frame.nodes.len() > frames::report::SMALL_SCENE;
-            let mut analysis = if large && plots.is_none() && !timestep_after {
-                frames::stream::run(scene, &options, moments.clone(), nodes.clone(), watch)?
+            let passes = large && plots.is_none() && !timestep_after;
+            // per segment: where the trace stands (only drawn on a terminal)
+            let watch_with = |what: &'static str| {
+                plcp::progress::enabled(cli.quiet).then(|| {
+                    let bar = progress.clone();
+                    let w: frames::solve::Watch = std::rc::Rc::new(std::cell::RefCell::new(
+                        move |t: &frames::solve::Tick| {
+                            bar.message(&format!(
+                                "{what}: Lambda = {:.6e}, {} pivots, {} breakpoints",
+                                t.lambda, t.pivots, t.breakpoints
+                            ))
+                        },
+                    ));
+                    w
+                })
+            };
+            let mut analysis = if passes {
+                frames::stream::run_in_passes(
+                    scene,
+                    &options,
+                    moments.clone(),
+                    nodes.clone(),
+                    watch_with("tracing system (9), pass 1 of 2 (hinge reading)"),
+                    watch_with("tracing system (9), pass 2 of 2 (response, moments)"),
+                )?
             } else {
+                let watch = watch_with("tracing system (9)");
                 Analysis::run_watched(scene, &options, watch)?
             };
             progress.finish();
