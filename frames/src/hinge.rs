@@ -240,6 +240,20 @@ struct State {
     accelerating: Vec<usize>,
 }
 
+/// The most pinned modes [`Reader`]'s cache of [`stress_unique`] holds
+/// (8 MB of keys).
+const CACHE_ENTRIES: usize = 1 << 20;
+
+/// What [`Reader::group_events`] reads of a piece, per hinge group.
+struct GroupSets {
+    events: Vec<HingeEvent>,
+    accelerating: Vec<usize>,
+    constant_rate: Vec<usize>,
+    at_yield: Vec<usize>,
+    now_yield: Vec<SectionMode>,
+    now_acc: Vec<SectionMode>,
+}
+
 fn groups(frame: &Frame, system: &System) -> (Vec<HingeGroup>, Vec<Option<usize>>) {
     let kept: Vec<bool> = (0..system.sections.len())
         .map(|k| system.moment_index(k).is_some())
@@ -431,7 +445,9 @@ pub struct Reader<'a> {
     last_to: Option<f64>,
     /// The pieces before the first long one (read if none is long).
     short: Vec<(usize, Piece)>,
+    /// [`stress_unique`] per set of pinned modes, and the modes it holds.
     cache: std::collections::HashMap<Vec<usize>, bool>,
+    cache_entries: usize,
     /// Per section, the mode it last accelerated on.
     flowed_modes: Vec<Option<usize>>,
     /// The pieces read before the first flow `(piece, from, to)`.
@@ -466,6 +482,7 @@ impl<'a> Reader<'a> {
             last_to: None,
             short: Vec::new(),
             cache: std::collections::HashMap::new(),
+            cache_entries: 0,
             flowed_modes: vec![None; system.sections.len()],
             rigid: Vec::new(),
             flowing: false,
@@ -565,10 +582,23 @@ impl<'a> Reader<'a> {
         let pinned: Vec<usize> = (0..system.modes.len())
             .filter(|&k| z[k] > tolerance * zscale)
             .collect();
-        let unique = *self
-            .cache
-            .entry(pinned.clone())
-            .or_insert_with(|| stress_unique(system, &pinned));
+        // the cache is keyed by the pinned modes, which for a travelling
+        // hinge grow with the hinges behind the front: none is kept where
+        // the answer needs no work, and the cache starts over beyond
+        // CACHE_ENTRIES modes held (the answers are the same, computed anew)
+        let unique = if system.is_determinate() {
+            true
+        } else {
+            if self.cache_entries + pinned.len() > CACHE_ENTRIES {
+                self.cache.clear();
+                self.cache_entries = 0;
+            }
+            let entries = &mut self.cache_entries;
+            *self.cache.entry(pinned.clone()).or_insert_with(|| {
+                *entries += pinned.len();
+                stress_unique(system, &pinned)
+            })
+        };
         State {
             yield_mode,
             acc_mode,
@@ -616,6 +646,15 @@ impl<'a> Reader<'a> {
 
     /// The events of a piece after the first flow, against its predecessor.
     fn plastic(&mut self, pk: usize, lambda: f64, lambda_to: f64, p: &Piece, st: State) {
+        let sets = self.group_events(lambda, &st);
+        self.close_or_extend(pk, (lambda, lambda_to), p, st, sets);
+    }
+
+    /// Per hinge group, its state on a piece (at yield, accelerating)
+    /// against its predecessor's: the events at the piece's start `lambda`
+    /// (sorted: yielded, flow started, flow stopped, unloaded), the sets of
+    /// the piece, and the hinges that form (pushed to the reading).
+    fn group_events(&mut self, lambda: f64, st: &State) -> GroupSets {
         let system = self.system;
         let groups = &self.groups;
         let group_state = |st: &State, g: usize| -> (SectionMode, SectionMode) {
@@ -644,7 +683,7 @@ impl<'a> Reader<'a> {
         let mut now_yield = vec![None; ng];
         let mut now_acc = vec![None; ng];
         for g in 0..ng {
-            let (y, a) = group_state(&st, g);
+            let (y, a) = group_state(st, g);
             now_yield[g] = y;
             now_acc[g] = a;
             if let Some((sec, mode)) = y {
@@ -720,6 +759,37 @@ impl<'a> Reader<'a> {
             EventKind::FlowStopped => 2,
             EventKind::Unloaded => 3,
         });
+        GroupSets {
+            events,
+            accelerating,
+            constant_rate,
+            at_yield,
+            now_yield,
+            now_acc,
+        }
+    }
+
+    /// A piece `pk` on `range` with the sets `sets` of [`Self::group_events`]:
+    /// a new breakpoint and interval where something observable changed,
+    /// else the current interval extended over it.
+    fn close_or_extend(
+        &mut self,
+        pk: usize,
+        range: (f64, f64),
+        p: &Piece,
+        st: State,
+        sets: GroupSets,
+    ) {
+        let system = self.system;
+        let (lambda, lambda_to) = range;
+        let GroupSets {
+            events,
+            mut accelerating,
+            mut constant_rate,
+            mut at_yield,
+            now_yield,
+            now_acc,
+        } = sets;
         let same_mechanism = self
             .intervals
             .last()
@@ -756,6 +826,11 @@ impl<'a> Reader<'a> {
                 });
             }
         } else {
+            // kept for every interval: no spare capacity (for a travelling
+            // hinge the sets hold every hinge behind the front)
+            accelerating.shrink_to_fit();
+            constant_rate.shrink_to_fit();
+            at_yield.shrink_to_fit();
             self.breakpoints.push(EventPoint {
                 lambda,
                 events,
