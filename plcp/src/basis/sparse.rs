@@ -188,10 +188,11 @@ impl<T: Scalar> SparseLu<T> {
         }
     }
 
-    /// [`Self::apply_etas_transpose`] on a unit vector `e_k`: it stays zero
-    /// but at `k` and at the eta positions, so each eta costs a product per
-    /// nonzero (in ascending order: the same sums as the full pass).
-    fn apply_etas_transpose_unit(&self, k: usize, c: &mut [T]) {
+    /// [`Self::apply_etas_transpose`] on a unit vector `e_k` (`c` zero on
+    /// entry): it stays zero but at `k` and at the eta positions, so each eta
+    /// costs a product per nonzero (in ascending order: the same sums as the
+    /// full pass). Returns the positions it wrote, ascending.
+    fn apply_etas_transpose_unit(&self, k: usize, c: &mut [T]) -> Vec<usize> {
         let mut nz: Vec<usize> = vec![k];
         c[k] = T::one();
         for e in self.etas.iter().rev() {
@@ -206,6 +207,7 @@ impl<T: Scalar> SparseLu<T> {
                 nz.insert(at, e.r);
             }
         }
+        nz
     }
 }
 
@@ -294,7 +296,7 @@ impl<T: Scalar> BasisFactor<T> for SparseLu<T> {
         let xs = col_slice(&mut x);
         let ys = col_slice(&mut y);
         if let Some(f) = &self.factor {
-            let mut tmp = Vec::with_capacity(self.dim);
+            let mut tmp = Vec::with_capacity(2 * self.dim);
             f.solve2_in_place(xs, ys, &mut tmp);
         }
         self.apply_etas2(xs, ys);
@@ -309,35 +311,55 @@ impl<T: Scalar> BasisFactor<T> for SparseLu<T> {
 
     fn inverse_rows(&self, rows: &[usize]) -> Option<Vec<Col<T>>> {
         // row r of B^{-1} is (B^{-T} e_r)': all rows in one sweep over the etas
-        // and the factors (each column sees the operations of its own solve)
+        // and the factors (each column sees the operations of its own solve).
+        // The etas leave e_r sparse: its nonzeros go straight to their places
+        // in the factors' column order, and the solutions are read back
+        // through their row order (no permutation passes; the same numbers)
         let dim = self.dim;
+        let factor = self.factor.as_ref();
         let mut x = Mat::<T>::zeros(dim, rows.len());
-        for (c, &r) in rows.iter().enumerate() {
-            let col = x
-                .col_mut(c)
+        let mut c = vec![T::zero(); dim];
+        for (col, &r) in rows.iter().enumerate() {
+            let nz = self.apply_etas_transpose_unit(r, &mut c);
+            let dst = x
+                .col_mut(col)
                 .try_as_col_major_mut()
                 .expect("a column is contiguous")
                 .as_slice_mut();
-            self.apply_etas_transpose_unit(r, col);
+            for &j in &nz {
+                dst[factor.map_or(j, |f| f.col_inv[j])] = c[j];
+                c[j] = T::zero();
+            }
         }
-        if let Some(f) = &self.factor {
-            f.solve_transpose_in_place_mat(x.as_mut());
+        if let Some(f) = factor {
+            f.solve_transpose_permuted_mat(x.as_mut());
         }
         Some(
             (0..rows.len())
-                .map(|c| {
+                .map(|col| {
                     let src = x
-                        .col(c)
+                        .col(col)
                         .try_as_col_major()
                         .expect("a column is contiguous")
                         .as_slice();
+                    let mut row = Col::<T>::zeros(dim);
+                    let out = col_slice(&mut row);
+                    match factor {
+                        Some(f) => {
+                            for (o, &p) in out.iter_mut().zip(&f.row_inv) {
+                                *o = src[p];
+                            }
+                        }
+                        None => out.copy_from_slice(src),
+                    }
                     // entries at the rounding level of the row are zeros of the
                     // exact inverse (the lexicographic rule compares them exactly)
-                    let big = src.iter().fold(T::zero(), |a, v| a.max(v.abs()));
+                    let big = out.iter().fold(T::zero(), |a, v| a.max(v.abs()));
                     let tol = T::from_f64(ROW_NOISE_EPS) * T::eps() * big;
-                    let mut row = Col::<T>::zeros(dim);
-                    for (r, &v) in col_slice(&mut row).iter_mut().zip(src) {
-                        *r = if v.abs() <= tol { T::zero() } else { v };
+                    for o in out.iter_mut() {
+                        if o.abs() <= tol {
+                            *o = T::zero();
+                        }
                     }
                     row
                 })
