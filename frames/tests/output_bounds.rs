@@ -136,7 +136,8 @@ fn rebuilt_sets(doc: &serde_json::Value) -> Vec<[Vec<String>; 2]> {
         assert!(iv.get("accelerating").is_none() && iv.get("constant_rate").is_none());
         for (set, key) in sets.iter_mut().zip(["accelerating", "constant_rate"]) {
             for gone in ch[key]["removed"].as_array().unwrap() {
-                let at = set.iter().position(|e| *e == gone.to_string());
+                let gone = gone.to_string();
+                let at = set.iter().position(|e| *e == gone);
                 set.remove(at.expect("a removed hinge was in the set"));
             }
             for new in ch[key]["added"].as_array().unwrap() {
