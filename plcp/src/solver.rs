@@ -410,8 +410,9 @@ impl<'a, T: Scalar> Solver<'a, T> {
 /// feature detection of the SIMD kernels (`cpuid`, some 60 us under
 /// virtualisation, where each `cpuid` traps) and the first touch of the
 /// code of the engine and of faer's kernels (page faults). `warm_up` runs a
-/// PLCP of order 3 with three pivots (the default settings in `f64`, the
-/// block basis) and one step of a [`Solver`] on it. No threads are started.
+/// PLCP of order 3 (the default settings in `f64`, the block basis; rows of
+/// unequal size, so that it is scaled as most data are) and one step of a
+/// [`Solver`] on it. No threads are started.
 /// It also inverts a matrix of order [`WARM_ORDER`] on the calling thread
 /// (the block basis's refactorisation): faer's products beyond `16^3`
 /// multiply-adds go to its large kernel, whose first call reads the cache
@@ -434,7 +435,17 @@ pub fn warm_up() -> bool {
         }
     });
     let inverted = crate::linalg::inverse_par(a.as_ref(), faer::Par::Seq).is_some();
-    let m = faer::Mat::<f64>::from_fn(3, 3, |i, j| if i == j { 2.0 } else { 0.5 });
+    // the first row 64 times the others (a P-matrix still): Ruiz's scales are
+    // not all one, so the scaled copy and the unscaling run too, as they do
+    // on most data
+    let m = faer::Mat::<f64>::from_fn(3, 3, |i, j| {
+        let v = if i == j { 2.0 } else { 0.5 };
+        if i == 0 {
+            64.0 * v
+        } else {
+            v
+        }
+    });
     let q = faer::Col::<f64>::from_fn(3, |i| 1.0 + i as f64);
     let d = faer::Col::<f64>::from_fn(3, |_| -1.0);
     let settings = Settings::<f64>::default();
