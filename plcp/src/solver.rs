@@ -413,7 +413,7 @@ impl<'a, T: Scalar> Solver<'a, T> {
 /// PLCP of order 3 (the default settings in `f64`, the block basis; rows of
 /// unequal size, so that it is scaled as most data are) and one step of a
 /// [`Solver`] on it. No threads are started.
-/// It also inverts a matrix of order [`WARM_ORDER`] on the calling thread
+/// It also inverts a matrix of order 64 on the calling thread
 /// (the block basis's refactorisation): faer's products beyond `16^3`
 /// multiply-adds go to its large kernel, whose first call reads the cache
 /// sizes from `/sys` and touches code and packing buffers the small solve
