@@ -38,7 +38,11 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             let v3 = std::hint::black_box(pulp::Arch::new());
             let a = t.elapsed().as_secs_f64();
             let t = Instant::now();
-            let x = faer::Mat::<f64>::identity(8, 8);
+            let k: usize = std::env::var("FIRST_N")
+                .ok()
+                .and_then(|s| s.parse().ok())
+                .unwrap_or(8);
+            let x = faer::Mat::<f64>::identity(k, k);
             let y = std::hint::black_box(&x * &x);
             let b = t.elapsed().as_secs_f64();
             let t = Instant::now();

@@ -107,6 +107,19 @@ impl<T: Scalar> Plcp<T> {
         Self::checked(Storage::Dense(m.to_owned()), q, d, free)
     }
 
+    /// [`Plcp::mixed`] taking `M` by value, for a copy whose entries the
+    /// caller has checked as [`check_entry`] does (the scaled problem of
+    /// [`crate::scaling`]): no second copy of `M`, no second pass over it.
+    pub(crate) fn mixed_owned_checked(
+        m: Mat<T>,
+        q: ColRef<'_, T>,
+        d: ColRef<'_, T>,
+        free: usize,
+    ) -> Result<Self, PlcpError> {
+        Self::check_shapes("M", (m.nrows(), m.ncols()), q, d, free)?;
+        Self::checked(Storage::Dense(m), q, d, free)
+    }
+
     /// A mixed PLCP with a sparse `M` (see [`Csc::try_from_triplets`]): the same
     /// problem as [`Plcp::mixed`], checked the same way, for which the solvers
     /// touch only the stored entries. [`Plcp::m`] makes a dense copy on its first

@@ -77,7 +77,7 @@ pub const RHS_BAND: i32 = 40;
 use crate::path::Path;
 use crate::problem::Plcp;
 use crate::scalar::Scalar;
-use faer::{Col, Mat};
+use faer::{Col, Mat, MatRef};
 
 /// Column pointers and row indices of a sparse `M`.
 type SparsePattern<'a> = (&'a [usize], &'a [usize]);
@@ -134,6 +134,318 @@ pub(crate) fn pow2(x: f64) -> f64 {
     2f64.powi(e as i32)
 }
 
+/// The largest and smallest nonzero finite `|M_ij|` (`(0, inf)` when there is
+/// none). A maximum and a minimum do not depend on the order of the entries,
+/// so the dense pass keeps [`LANES`] partial results (vectorised through
+/// pulp's dispatch) and folds them at the end: the same numbers as the plain
+/// fold.
+fn matrix_extremes<T: Scalar>(m: MatrixRef<'_, T>) -> (f64, f64) {
+    let fold = |(hi, lo): (f64, f64), v: f64| {
+        let v = v.abs();
+        if v > 0.0 && v.is_finite() {
+            (hi.max(v), lo.min(v))
+        } else {
+            (hi, lo)
+        }
+    };
+    match m {
+        MatrixRef::Dense(m) => pulp::Arch::new().dispatch(DenseExtremes { m }),
+        MatrixRef::Sparse(m) => m
+            .parts()
+            .2
+            .iter()
+            .fold((0.0f64, f64::INFINITY), |acc, v| fold(acc, v.to_f64())),
+    }
+}
+
+/// The partial results the dense passes keep: two AVX2 vectors of `f64`.
+const LANES: usize = 8;
+
+/// [`matrix_extremes`] of a dense `M`, for pulp's dispatch.
+struct DenseExtremes<'a, T: Scalar> {
+    m: MatRef<'a, T>,
+}
+
+impl<T: Scalar> pulp::WithSimd for DenseExtremes<'_, T> {
+    type Output = (f64, f64);
+
+    #[inline(always)]
+    fn with_simd<S: pulp::Simd>(self, _simd: S) -> Self::Output {
+        let m = self.m;
+        let mut hi = [0.0f64; LANES];
+        let mut lo = [f64::INFINITY; LANES];
+        let mut buf = Vec::new();
+        // `v > hi` and `0 < v < lo` as selects (NaN compares false, an
+        // infinity is excluded): the plain fold's `max`, `min` over the
+        // nonzero finite entries
+        for j in 0..m.ncols() {
+            let col = col_slice(m, j, &mut buf);
+            let split = col.len() - col.len() % LANES;
+            for ch in col[..split].chunks_exact(LANES) {
+                for ((x, h), lw) in ch.iter().zip(&mut hi).zip(&mut lo) {
+                    let v = x.to_f64().abs();
+                    if v > *h && v < f64::INFINITY {
+                        *h = v;
+                    }
+                    if v > 0.0 && v < *lw {
+                        *lw = v;
+                    }
+                }
+            }
+            for x in &col[split..] {
+                let v = x.to_f64().abs();
+                if v > hi[0] && v < f64::INFINITY {
+                    hi[0] = v;
+                }
+                if v > 0.0 && v < lo[0] {
+                    lo[0] = v;
+                }
+            }
+        }
+        let hi = hi.iter().fold(0.0f64, |a, &b| a.max(b));
+        let lo = lo.iter().fold(f64::INFINITY, |a, &b| a.min(b));
+        (hi, lo)
+    }
+}
+
+/// Column `j` of `m` as a slice (copied into `buf` when it is not contiguous).
+#[inline(always)]
+fn col_slice<'a, T: Scalar>(m: MatRef<'a, T>, j: usize, buf: &'a mut Vec<T>) -> &'a [T] {
+    match m.col(j).try_as_col_major() {
+        Some(c) => c.as_slice(),
+        None => {
+            buf.clear();
+            buf.extend(m.col(j).iter().copied());
+            buf
+        }
+    }
+}
+
+/// `|M| / sigma` as Ruiz's sweeps read it: a dense `M` in place (a copy of
+/// `|M|` was an allocation of `dim^2` doubles per solve), a sparse one as
+/// `|M_ij| / sigma` over its stored entries with their rows.
+enum AbsMatrix<'a, T: Scalar> {
+    Dense {
+        m: MatRef<'a, T>,
+        inv_sigma: f64,
+    },
+    Sparse {
+        a: Vec<f64>,
+        pattern: SparsePattern<'a>,
+    },
+}
+
+impl<'a, T: Scalar> AbsMatrix<'a, T> {
+    fn new(m: MatrixRef<'a, T>, inv_sigma: f64) -> Self {
+        match m {
+            MatrixRef::Dense(m) => Self::Dense { m, inv_sigma },
+            MatrixRef::Sparse(m) => {
+                let (col_ptr, row_idx, val) = m.parts();
+                Self::Sparse {
+                    a: val.iter().map(|v| v.to_f64().abs() * inv_sigma).collect(),
+                    pattern: (col_ptr, row_idx),
+                }
+            }
+        }
+    }
+
+    /// Ruiz's sweeps: the row and column scales `r`, `c` (starting at one),
+    /// each sweep dividing every row and column by the square root of its
+    /// largest scaled entry; stops early once every maximum lies within a
+    /// factor of two of one (the power-of-two scales would not change).
+    fn sweeps(&self, dim: usize, sweeps: usize) -> (Vec<f64>, Vec<f64>) {
+        let mut r = vec![1.0f64; dim];
+        let mut c = vec![1.0f64; dim];
+        let mut rmax = vec![0.0f64; dim];
+        let mut cmax = vec![0.0f64; dim];
+        for _ in 0..sweeps {
+            rmax.iter_mut().for_each(|v| *v = 0.0);
+            self.maxima(&r, &c, &mut rmax, &mut cmax);
+            // every row and column maximum within a factor of two of one: the
+            // power-of-two scales would not change any more
+            let settled = |v: &f64| *v == 0.0 || (0.5..=2.0).contains(v);
+            if rmax.iter().all(settled) && cmax.iter().all(settled) {
+                break;
+            }
+            for i in 0..dim {
+                if rmax[i] > 0.0 && rmax[i].is_finite() {
+                    r[i] /= rmax[i].sqrt();
+                }
+            }
+            for j in 0..dim {
+                if cmax[j] > 0.0 && cmax[j].is_finite() {
+                    c[j] /= cmax[j].sqrt();
+                }
+            }
+        }
+        (r, c)
+    }
+
+    /// The largest scaled entry `|M_ij| / sigma * r_i * c_j` of every row
+    /// (into `rmax`, which starts at zero) and column (`cmax`). NaN compares
+    /// false and is skipped; infinities are caught by the caller.
+    fn maxima(&self, r: &[f64], c: &[f64], rmax: &mut [f64], cmax: &mut [f64]) {
+        match self {
+            Self::Dense { m, inv_sigma } => pulp::Arch::new().dispatch(DenseMaxima {
+                m: *m,
+                inv_sigma: *inv_sigma,
+                r,
+                c,
+                rmax,
+                cmax,
+            }),
+            Self::Sparse {
+                a,
+                pattern: (col_ptr, row_idx),
+            } => {
+                for j in 0..c.len() {
+                    let cj = c[j];
+                    let mut cm = 0.0f64;
+                    for k in col_ptr[j]..col_ptr[j + 1] {
+                        let i = row_idx[k];
+                        let v = a[k] * r[i] * cj;
+                        if v > rmax[i] {
+                            rmax[i] = v;
+                        }
+                        if v > cm {
+                            cm = v;
+                        }
+                    }
+                    cmax[j] = cm;
+                }
+            }
+        }
+    }
+
+    /// Raises every row `i` whose right-hand side (after `gamma`) stays far
+    /// below one against its column: `r_i t`, `c_i / t`, `t > 1`, as far as
+    /// the row's off-diagonal entries allow (they stay at most one, `M_ii` is
+    /// unchanged, column `i` only shrinks). Ruiz balances maxima only: in
+    /// `diag(3e38, 1e-37)` with `q = (3e38, 2e-37)` the second row's `q` ends
+    /// at `3e-38`. Independent for every `i`; no pass over `M` when no row
+    /// needs it (typical data).
+    fn raise_small_rows(&self, g: &[f64], gmax: f64, gamma: f64, r: &mut [f64], c: &mut [f64]) {
+        let dim = r.len();
+        let small =
+            |gi: f64| gi > 0.0 && gi < SMALL_RHS * (gmax * gamma).max(1.0) && gi.is_finite();
+        if !(0..dim).any(|i| small(g[i] * r[i] * gamma)) {
+            return;
+        }
+        let mut rowoff = vec![0.0f64; dim];
+        let mut entry = |i: usize, j: usize, aij: f64| {
+            if i != j {
+                let v = aij * r[i] * c[j];
+                if v > rowoff[i] {
+                    rowoff[i] = v;
+                }
+            }
+        };
+        match self {
+            Self::Dense { m, inv_sigma } => {
+                let mut buf = Vec::new();
+                for j in 0..dim {
+                    let col = col_slice(*m, j, &mut buf);
+                    for (i, v) in col.iter().enumerate() {
+                        entry(i, j, v.to_f64().abs() * inv_sigma);
+                    }
+                }
+            }
+            Self::Sparse {
+                a,
+                pattern: (col_ptr, row_idx),
+            } => {
+                for j in 0..dim {
+                    for k in col_ptr[j]..col_ptr[j + 1] {
+                        entry(row_idx[k], j, a[k]);
+                    }
+                }
+            }
+        }
+        for i in 0..dim {
+            let gi = g[i] * r[i] * gamma;
+            if small(gi) && rowoff[i].is_finite() {
+                let t = if rowoff[i] > 0.0 {
+                    (1.0 / gi).min(1.0 / rowoff[i])
+                } else {
+                    1.0 / gi
+                };
+                if t > 1.0 && t.is_finite() {
+                    r[i] *= t;
+                    c[i] /= t;
+                }
+            }
+        }
+    }
+}
+
+/// [`AbsMatrix::maxima`] of a dense `M`, for pulp's dispatch (the machine's
+/// vector width; the crate is compiled for baseline x86-64). Every scaled
+/// entry is `((|M_ij| / sigma) r_i) c_j`, the same operations in the same
+/// order as the plain loop; the column's maximum is kept in [`LANES`]
+/// partial maxima folded at the end (a maximum does not depend on the
+/// order), so the scales are the same to the last bit.
+struct DenseMaxima<'a, T: Scalar> {
+    m: MatRef<'a, T>,
+    inv_sigma: f64,
+    r: &'a [f64],
+    c: &'a [f64],
+    rmax: &'a mut [f64],
+    cmax: &'a mut [f64],
+}
+
+impl<T: Scalar> pulp::WithSimd for DenseMaxima<'_, T> {
+    type Output = ();
+
+    #[inline(always)]
+    fn with_simd<S: pulp::Simd>(self, _simd: S) {
+        let Self {
+            m,
+            inv_sigma,
+            r,
+            c,
+            rmax,
+            cmax,
+        } = self;
+        let mut buf = Vec::new();
+        for (j, (&cj, cmj)) in c.iter().zip(cmax.iter_mut()).enumerate() {
+            let col = col_slice(m, j, &mut buf);
+            let mut lanes = [0.0f64; LANES];
+            let split = col.len() - col.len() % LANES;
+            for ((a, ri), rm) in col[..split]
+                .chunks_exact(LANES)
+                .zip(r[..split].chunks_exact(LANES))
+                .zip(rmax[..split].chunks_exact_mut(LANES))
+            {
+                for l in 0..LANES {
+                    let v = a[l].to_f64().abs() * inv_sigma * ri[l] * cj;
+                    if v > rm[l] {
+                        rm[l] = v;
+                    }
+                    if v > lanes[l] {
+                        lanes[l] = v;
+                    }
+                }
+            }
+            for ((a, &ri), rm) in col[split..].iter().zip(&r[split..]).zip(&mut rmax[split..]) {
+                let v = a.to_f64().abs() * inv_sigma * ri * cj;
+                if v > *rm {
+                    *rm = v;
+                }
+                if v > lanes[0] {
+                    lanes[0] = v;
+                }
+            }
+            let mut cm = 0.0f64;
+            for &v in &lanes {
+                if v > cm {
+                    cm = v;
+                }
+            }
+            *cmj = cm;
+        }
+    }
+}
+
 impl Equilibration {
     /// Ruiz equilibration of `M` in `sweeps` sweeps, then the right-hand side
     /// balanced against it (module docs), scales rounded to powers of two.
@@ -141,13 +453,6 @@ impl Equilibration {
     /// On a sparse problem the sweeps run over the stored entries only.
     pub fn ruiz<T: Scalar>(problem: &Plcp<T>, sweeps: usize) -> Self {
         let dim = problem.dim();
-        // dense: read in place, a column of |M| at a time into `colbuf`
-        // (a copy of |M| was an allocation of dim^2 doubles per solve);
-        // sparse: |M| over the stored entries of each column, with their rows
-        let dense = match problem.matrix() {
-            MatrixRef::Dense(m) => Some(m),
-            MatrixRef::Sparse(_) => None,
-        };
         // the size of the right-hand side per row
         let graw: Vec<f64> = (0..dim)
             .map(|i| {
@@ -169,26 +474,7 @@ impl Equilibration {
         // give the very same scaled problem, the factor going to the rows'
         // scales (`z` is invariant, `w` scales with the data). Data whose
         // entries straddle one (`e = 0`) keep the scales they had without it.
-        let (mmax, mmin) = {
-            let fold = |(hi, lo): (f64, f64), v: f64| {
-                let v = v.abs();
-                if v > 0.0 && v.is_finite() {
-                    (hi.max(v), lo.min(v))
-                } else {
-                    (hi, lo)
-                }
-            };
-            match problem.matrix() {
-                MatrixRef::Dense(m) => (0..dim).fold((0.0f64, f64::INFINITY), |acc, j| {
-                    m.col(j).iter().fold(acc, |acc, v| fold(acc, v.to_f64()))
-                }),
-                MatrixRef::Sparse(m) => m
-                    .parts()
-                    .2
-                    .iter()
-                    .fold((0.0f64, f64::INFINITY), |acc, v| fold(acc, v.to_f64())),
-            }
-        };
+        let (mmax, mmin) = matrix_extremes(problem.matrix());
         let gmax_raw = graw.iter().fold(0.0f64, |a, &b| a.max(b));
         // (see NORMALISE_BAND for why data near one are left alone)
         let e = if NORMALISE_BY_DATA_EXPONENT && mmax > 0.0 {
@@ -201,80 +487,9 @@ impl Equilibration {
         // data near one keep the scales they had (see NORMALISE_BAND)
         let e = if e.abs() <= NORMALISE_BAND { 0 } else { e };
         let inv_sigma = exp2i(-e);
-        let mut colbuf = vec![0.0f64; if dense.is_some() { dim } else { 0 }];
-        let abs_col = |j: usize, buf: &mut [f64]| {
-            if let Some(m) = dense {
-                for (b, v) in buf.iter_mut().zip(m.col(j).iter()) {
-                    *b = v.to_f64().abs() * inv_sigma;
-                }
-            }
-        };
-        let (a, rows): (Vec<f64>, Option<SparsePattern<'_>>) = match problem.matrix() {
-            MatrixRef::Dense(_) => (Vec::new(), None),
-            MatrixRef::Sparse(m) => {
-                let (col_ptr, row_idx, val) = m.parts();
-                (
-                    val.iter().map(|v| v.to_f64().abs() * inv_sigma).collect(),
-                    Some((col_ptr, row_idx)),
-                )
-            }
-        };
+        let abs_m = AbsMatrix::new(problem.matrix(), inv_sigma);
         let g: Vec<f64> = graw.iter().map(|&v| v * inv_sigma).collect();
-        let mut r = vec![1.0f64; dim];
-        let mut c = vec![1.0f64; dim];
-        let mut rmax = vec![0.0f64; dim];
-        let mut cmax = vec![0.0f64; dim];
-        for _ in 0..sweeps {
-            rmax.iter_mut().for_each(|v| *v = 0.0);
-            for j in 0..dim {
-                let cj = c[j];
-                let mut cm = 0.0f64;
-                // NaN compares false and is skipped; infinities are caught below
-                match rows {
-                    None => {
-                        abs_col(j, &mut colbuf);
-                        for ((&aij, &ri), rm) in colbuf.iter().zip(&r).zip(&mut rmax) {
-                            let v = aij * ri * cj;
-                            if v > *rm {
-                                *rm = v;
-                            }
-                            if v > cm {
-                                cm = v;
-                            }
-                        }
-                    }
-                    Some((col_ptr, row_idx)) => {
-                        for k in col_ptr[j]..col_ptr[j + 1] {
-                            let i = row_idx[k];
-                            let v = a[k] * r[i] * cj;
-                            if v > rmax[i] {
-                                rmax[i] = v;
-                            }
-                            if v > cm {
-                                cm = v;
-                            }
-                        }
-                    }
-                }
-                cmax[j] = cm;
-            }
-            // every row and column maximum within a factor of two of one: the
-            // power-of-two scales would not change any more
-            let settled = |v: &f64| *v == 0.0 || (0.5..=2.0).contains(v);
-            if rmax.iter().all(settled) && cmax.iter().all(settled) {
-                break;
-            }
-            for i in 0..dim {
-                if rmax[i] > 0.0 && rmax[i].is_finite() {
-                    r[i] /= rmax[i].sqrt();
-                }
-            }
-            for j in 0..dim {
-                if cmax[j] > 0.0 && cmax[j].is_finite() {
-                    c[j] /= cmax[j].sqrt();
-                }
-            }
-        }
+        let (mut r, mut c) = abs_m.sweeps(dim, sweeps);
         // the right-hand side after Ruiz: a uniform factor brings its largest
         // entry to one, if it lies outside [2^-RHS_BAND, 2^RHS_BAND] (typical data keep
         // exactly the scaling of Ruiz on M)
@@ -298,62 +513,7 @@ impl Equilibration {
         } else {
             1.0
         };
-        // a row i whose right-hand side stays far below one (Ruiz balances
-        // maxima only: in diag(3e38, 1e-37) with q = (3e38, 2e-37) the second
-        // row's q ends at 3e-38) is raised with its column lowered, r_i t,
-        // c_i / t, t >= 1, as far as its off-diagonal entries allow: M_ii is
-        // unchanged, the entries of column i only shrink, those of row i stay at
-        // most one; independent for every i
-        // the rows to raise: right-hand side (after gamma) far below one
-        let small =
-            |gi: f64| gi > 0.0 && gi < SMALL_RHS * (gmax * gamma).max(1.0) && gi.is_finite();
-        if !(0..dim).any(|i| small(g[i] * r[i] * gamma)) {
-            // no row to raise (typical data): the pass over M below is not needed
-            return Self {
-                rows: r.into_iter().map(|v| pow2(v * gamma) * inv_sigma).collect(),
-                cols: c.into_iter().map(|v| pow2(v / gamma)).collect(),
-            };
-        }
-        let mut rowoff = vec![0.0f64; dim];
-        let mut entry = |i: usize, j: usize, aij: f64| {
-            if i != j {
-                let v = aij * r[i] * c[j];
-                if v > rowoff[i] {
-                    rowoff[i] = v;
-                }
-            }
-        };
-        match rows {
-            None => {
-                for j in 0..dim {
-                    abs_col(j, &mut colbuf);
-                    for (i, &aij) in colbuf.iter().enumerate() {
-                        entry(i, j, aij);
-                    }
-                }
-            }
-            Some((col_ptr, row_idx)) => {
-                for j in 0..dim {
-                    for k in col_ptr[j]..col_ptr[j + 1] {
-                        entry(row_idx[k], j, a[k]);
-                    }
-                }
-            }
-        }
-        for i in 0..dim {
-            let gi = g[i] * r[i] * gamma;
-            if small(gi) && rowoff[i].is_finite() {
-                let t = if rowoff[i] > 0.0 {
-                    (1.0 / gi).min(1.0 / rowoff[i])
-                } else {
-                    1.0 / gi
-                };
-                if t > 1.0 && t.is_finite() {
-                    r[i] *= t;
-                    c[i] /= t;
-                }
-            }
-        }
+        abs_m.raise_small_rows(&g, gmax, gamma, &mut r, &mut c);
         // fold gamma into the rows and columns: R = gamma R', C = C' / gamma,
         // and the data's scale into the rows
         Self {
@@ -377,8 +537,27 @@ impl Equilibration {
         // `None` when the scaled data leave the range of the type (overflow)
         let scaled = match problem.matrix() {
             MatrixRef::Dense(m) => {
-                let m = Mat::from_fn(dim, dim, |i, j| r[i] * m[(i, j)] * c[j]);
-                Plcp::mixed(m.as_ref(), q.as_ref(), d.as_ref(), problem.free())
+                // column by column over slices (`Mat::from_fn` indexed with
+                // bounds checks): the same products `(r_i M_ij) c_j`
+                // and each entry checked as `Plcp::mixed` checks it (finite,
+                // zero or normal) in the same pass, the copy handed over whole
+                let mut out = Mat::<T>::zeros(dim, dim);
+                let mut buf = Vec::new();
+                let mut ok = true;
+                let min_normal = T::min_normal();
+                for (j, &cj) in c.iter().enumerate() {
+                    let src = col_slice(m, j, &mut buf);
+                    let dst = out.col_mut(j).try_as_col_major_mut().expect("owned");
+                    for ((o, &ri), &mij) in dst.as_slice_mut().iter_mut().zip(&r).zip(src) {
+                        let v = ri * mij * cj;
+                        *o = v;
+                        ok &= v.is_finite() & ((v == T::zero()) | (v.to_f64().abs() >= min_normal));
+                    }
+                }
+                if !ok {
+                    return None;
+                }
+                Plcp::mixed_owned_checked(out, q.as_ref(), d.as_ref(), problem.free())
             }
             MatrixRef::Sparse(m) => {
                 let m = m.map(|i, j, v| r[i] * v * c[j]);

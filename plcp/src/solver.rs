@@ -410,16 +410,42 @@ impl<'a, T: Scalar> Solver<'a, T> {
 /// feature detection of the SIMD kernels (`cpuid`, some 60 us under
 /// virtualisation, where each `cpuid` traps) and the first touch of the
 /// code of the engine and of faer's kernels (page faults). `warm_up` runs a
-/// PLCP of order 3 with three pivots (the default settings in `f64`, the
-/// block basis) and one step of a [`Solver`] on it. No threads are started.
+/// PLCP of order 3 (the default settings in `f64`, the block basis; rows of
+/// unequal size, so that it is scaled as most data are) and one step of a
+/// [`Solver`] on it. No threads are started.
+/// It also inverts a matrix of order 64 on the calling thread
+/// (the block basis's refactorisation): faer's products beyond `16^3`
+/// multiply-adds go to its large kernel, whose first call reads the cache
+/// sizes from `/sys` and touches code and packing buffers the small solve
+/// never reaches (measured: the first solve at n = 100 took 2.0 ms with the
+/// small warm-up, 0.7 ms with this one, the next solve 0.6 ms).
 /// A latency-sensitive caller (one small solve per process, or the first
 /// step of a control loop) calls it at start-up; `plcp solve` and `plcp
 /// sequence` call it before they read their input. It costs what the small
-/// solve costs (tens of microseconds) each time it is called.
+/// solve and the inversion cost (tens of microseconds) each time it is
+/// called, about a millisecond the first time.
 pub fn warm_up() -> bool {
     let _ = pulp::Arch::new();
     let _ = crate::scalar::fma_detected();
-    let m = faer::Mat::<f64>::from_fn(3, 3, |i, j| if i == j { 2.0 } else { 0.5 });
+    let a = faer::Mat::<f64>::from_fn(WARM_ORDER, WARM_ORDER, |i, j| {
+        if i == j {
+            4.0
+        } else {
+            1.0 / (1.0 + i as f64 + 2.0 * j as f64)
+        }
+    });
+    let inverted = crate::linalg::inverse_par(a.as_ref(), faer::Par::Seq).is_some();
+    // the first row 64 times the others (a P-matrix still): Ruiz's scales are
+    // not all one, so the scaled copy and the unscaling run too, as they do
+    // on most data
+    let m = faer::Mat::<f64>::from_fn(3, 3, |i, j| {
+        let v = if i == j { 2.0 } else { 0.5 };
+        if i == 0 {
+            64.0 * v
+        } else {
+            v
+        }
+    });
     let q = faer::Col::<f64>::from_fn(3, |i| 1.0 + i as f64);
     let d = faer::Col::<f64>::from_fn(3, |_| -1.0);
     let settings = Settings::<f64>::default();
@@ -430,8 +456,12 @@ pub fn warm_up() -> bool {
     let stepped = Solver::new(m.as_ref(), &settings).is_ok_and(|mut s| {
         s.lcp_end(q.as_ref()).is_ok() && s.step_end(q.as_ref(), d.as_ref()).is_ok()
     });
-    reached && stepped
+    reached && stepped && inverted
 }
+
+/// The order of the inversion in [`warm_up`]: its recursive LU reaches
+/// faer's large product kernel (`32^3` multiply-adds and more).
+const WARM_ORDER: usize = 64;
 
 /// The end residual of a lean step on the data, in buffers kept between
 /// steps: the same operations in the same order as
