@@ -159,6 +159,80 @@ fn out(text: &str) {
     let _ = std::io::stdout().write_all(text.as_bytes());
 }
 
+/// What `frames run` reports beyond the defaults (`--moments`, `--nodes`,
+/// `--hinge-sets`).
+struct Picks {
+    moments: Option<frames::report::MomentPick>,
+    nodes: Option<frames::report::NodePick>,
+    hinge_sets: Option<frames::report::HingeSets>,
+}
+
+/// `frames run`'s report on stdout: the JSON document (`json`) or the text,
+/// with the no-unloading warning when a hinge unloads at `valid`.
+fn write_report(
+    analysis: &Analysis,
+    valid: Option<(f64, f64)>,
+    json: bool,
+    picks: Picks,
+) -> Result<(), FramesError> {
+    let Picks {
+        moments,
+        nodes,
+        hinge_sets,
+    } = picks;
+    if json {
+        let mut sel = frames::report::OutputSelection::default_for(analysis);
+        if let Some(m) = moments {
+            sel.moments = m;
+        }
+        if let Some(n) = nodes {
+            sel.nodes = n;
+        }
+        if let Some(h) = hinge_sets {
+            sel.hinge_sets = h;
+        }
+        let mut doc = analysis
+            .json_report(&sel)
+            .map_err(|message| FramesError::Scene {
+                file: analysis.scene.file.clone(),
+                line: 0,
+                key: "--nodes".into(),
+                message,
+            })?;
+        if let Some((lambda, _)) = valid {
+            doc.insert("plcp_valid_up_to_lambda", lambda.into());
+            if let Some(c) = &analysis.time_stepping {
+                doc.insert("time_stepping", c.to_json(analysis));
+            }
+        }
+        // written as it is serialised, one entry at a time, not built
+        // as one document
+        let mut w = std::io::BufWriter::new(std::io::stdout().lock());
+        // pretty for small scenes, compact (about 40 % of the size) for large
+        let _ = if analysis.scene.frame.nodes.len() <= frames::report::SMALL_SCENE {
+            serde_json::to_writer_pretty(&mut w, &doc)
+        } else {
+            serde_json::to_writer(&mut w, &doc)
+        };
+        let _ = w.write_all(b"\n");
+        let _ = w.flush();
+    } else {
+        out(&analysis.to_text());
+        if let Some((lambda, t)) = valid {
+            out(&format!(
+                "\nWARNING: the PLCP response is NOT VALID beyond Lambda = {} (t = {}): a flowing hinge unloads there{}\n",
+                format_number(lambda),
+                format_number(t),
+                if analysis.time_stepping.is_some() { "" } else { "; --timestep-after continues by time stepping" }
+            ));
+        }
+        if let Some(c) = &analysis.time_stepping {
+            out(&c.to_text(analysis));
+        }
+    }
+    Ok(())
+}
+
 fn run(cli: Cli) -> Result<(), FramesError> {
     let progress = plcp::progress::Progress::spinner("reading the scene", cli.quiet);
     match cli.command {
@@ -258,57 +332,12 @@ fn run(cli: Cli) -> Result<(), FramesError> {
                     }
                 }
             }
-            if json {
-                let mut sel = frames::report::OutputSelection::default_for(&analysis);
-                if let Some(m) = moments {
-                    sel.moments = m;
-                }
-                if let Some(n) = nodes {
-                    sel.nodes = n;
-                }
-                if let Some(h) = hinge_sets {
-                    sel.hinge_sets = h;
-                }
-                let mut doc = analysis
-                    .json_report(&sel)
-                    .map_err(|message| FramesError::Scene {
-                        file: analysis.scene.file.clone(),
-                        line: 0,
-                        key: "--nodes".into(),
-                        message,
-                    })?;
-                if let Some((lambda, _)) = valid {
-                    doc.insert("plcp_valid_up_to_lambda", lambda.into());
-                    if let Some(c) = &analysis.time_stepping {
-                        doc.insert("time_stepping", c.to_json(&analysis));
-                    }
-                }
-                // written as it is serialised, one entry at a time, not built
-                // as one document
-                let mut w = std::io::BufWriter::new(std::io::stdout().lock());
-                // pretty for small scenes, compact (about 40 % of the size) for large
-                let _ = if analysis.scene.frame.nodes.len() <= frames::report::SMALL_SCENE {
-                    serde_json::to_writer_pretty(&mut w, &doc)
-                } else {
-                    serde_json::to_writer(&mut w, &doc)
-                };
-                let _ = w.write_all(b"\n");
-                let _ = w.flush();
-            } else {
-                out(&analysis.to_text());
-                if let Some((lambda, t)) = valid {
-                    out(&format!(
-                        "\nWARNING: the PLCP response is NOT VALID beyond Lambda = {} (t = {}): a flowing hinge unloads there{}\n",
-                        format_number(lambda),
-                        format_number(t),
-                        if analysis.time_stepping.is_some() { "" } else { "; --timestep-after continues by time stepping" }
-                    ));
-                }
-                if let Some(c) = &analysis.time_stepping {
-                    out(&c.to_text(&analysis));
-                }
-            }
-            Ok(())
+            let picks = Picks {
+                moments,
+                nodes,
+                hinge_sets,
+            };
+            write_report(&analysis, valid, json, picks)
         }
         Command::Export { scene, lambda_max } => {
             if let Some(l) = lambda_max {
