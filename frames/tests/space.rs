@@ -1290,3 +1290,50 @@ fn plots_sample_and_say_so() {
     assert_eq!(geo.matches("at Lambda = ").count(), 20);
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// `frames run --certify` of the 3D run turned by `[0.2, -0.7, 0.5, 0.4]`
+/// (issue 14). At `Lambda = 11.1855` seven yield slacks of two sections
+/// (a stress reaching a vertex of the polyhedron, where several facets meet)
+/// reach zero within `1e-16` of each other, at once for the unrotated data;
+/// the rounded rotation splits the tie, and the float path (right to
+/// rounding: its basis has condition 1.5e5 and agrees with that basis's
+/// exact solution to `2e-15`) keeps three slacks basic that are exactly
+/// `-1.6e-20` and `-1.3e-18` for every `L`. The certificate rejects that
+/// basis, and the answer is not reported as a success; the reason names the
+/// slack's own value, at rounding level. It named its row's, scaled by
+/// `2^54` to integers: `w430 = -2.9e-4`, which read as a wrong answer.
+#[test]
+fn the_rotated_3d_run_is_rejected_at_a_rounding_level_slack() {
+    let q = [0.2, -0.7, 0.5, 0.4f64];
+    let n = q.iter().map(|x| x * x).sum::<f64>().sqrt();
+    let src = rotated_space(
+        &pipe_whip("space-restraint.toml"),
+        &rotation(q.map(|x| x / n)),
+    );
+    let scene = Scene::from_toml(&src, "rotated.toml").unwrap();
+    let options = AnalysisOptions {
+        certify: true,
+        ..AnalysisOptions::default()
+    };
+    let a = Analysis::run(scene, &options).unwrap();
+    let c = a.solution.info.certificate.as_ref().expect("a certificate");
+    let Some(f) = &c.failure else {
+        assert!(a.solution.status.is_success());
+        return;
+    };
+    assert!(!a.solution.status.is_success(), "{}", a.solution.message);
+    // "w430 = -1.6271877215013704e-20 < 0 for every L"
+    let value: f64 = f
+        .reason
+        .split(" = ")
+        .nth(1)
+        .and_then(|r| r.split(' ').next())
+        .and_then(|v| v.parse().ok())
+        .unwrap_or_else(|| panic!("segment {}: {}", f.segment, f.reason));
+    assert!(
+        f.reason.ends_with("< 0 for every L") && value < 0.0 && value > -1e-15,
+        "segment {}: {}",
+        f.segment,
+        f.reason
+    );
+}

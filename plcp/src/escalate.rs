@@ -479,16 +479,7 @@ pub(crate) fn continue_exactly<T: Scalar>(
         return;
     }
     let timer = std::time::Instant::now();
-    let mut esc = path.info.escalation.take().unwrap_or_else(|| Escalation {
-        from: T::NAME,
-        reason: format!("{} in {}: {}", path.status.as_str(), T::NAME, path.message),
-        pivots_before: path.info.pivots,
-        seconds_before: path.info.solve_seconds,
-        ..Escalation::default()
-    });
-    if esc.segment_precisions.len() != path.segments.len() {
-        esc.segment_precisions = vec![T::NAME; path.segments.len()];
-    }
+    let mut esc = exact_escalation_of(path);
     let dim = problem.dim();
     if dim > crate::tolerance::ESCALATE_EXACT_MAX_DIM {
         esc.exact_note = format!(
@@ -498,51 +489,10 @@ pub(crate) fn continue_exactly<T: Scalar>(
         path.info.escalation = Some(esc);
         return;
     }
-    let half = T::from_f64(0.5);
-    let attempt = |k: usize| -> Result<crate::exact::ExactPath, String> {
-        let seg = &path.segments[k];
-        if seg.unbounded || seg.lambda_to <= seg.lambda_from || !seg.lambda_to.is_finite() {
-            return Err(format!("segment {k} has no interior to restart in"));
-        }
-        let basis: Vec<Var> = seg
-            .basis
-            .iter()
-            .copied()
-            .filter(|v| matches!(v, Var::Z(_) | Var::W(_) | Var::U(_)))
-            .collect();
-        let mid = seg.lambda_from + (seg.lambda_to - seg.lambda_from) * half;
-        let rest =
-            crate::exact::trace_from(problem, settings, &basis, mid).map_err(|e| e.to_string())?;
-        // the same check as for fx128: no event between L_k and the restart
-        if let Some(s) = rest.path.segments.first() {
-            let back = seg.lambda_from.to_f64() - s.lambda_from;
-            let span = 1f64
-                .max(seg.lambda_from.to_f64().abs())
-                .max(back.abs())
-                .max(if s.unbounded {
-                    1.0
-                } else {
-                    (s.lambda_to - s.lambda_from).abs()
-                });
-            let gap = T::eps().to_f64().sqrt() * span;
-            for (from, slope) in [(&s.z_from, &s.dz), (&s.w_from, &s.dw)] {
-                for i in 0..from.nrows() {
-                    let v = from[i] + slope[i] * back;
-                    if v < 0.0 && -v > gap * slope[i].abs() {
-                        return Err(format!(
-                            "the basis of segment {k} is not the path's at L = {:e} (an event lies between)",
-                            seg.lambda_from.to_f64()
-                        ));
-                    }
-                }
-            }
-        }
-        Ok(rest)
-    };
     let warm = restart_segment(path).and_then(|k0| {
         let mut why = String::new();
         for k in restart_candidates(k0.min(path.segments.len().saturating_sub(1))) {
-            match attempt(k) {
+            match exact_attempt(problem, settings, path, k) {
                 Ok(rest) => return Ok((k, rest)),
                 Err(e) => why = e,
             }
@@ -567,12 +517,104 @@ pub(crate) fn continue_exactly<T: Scalar>(
         },
     };
     let warm = from != problem.lambda0() || k > 0;
+    splice_exact(problem, path, esc, (k, warm.then_some(from)), &rest);
+    path.info.solve_seconds += timer.elapsed().as_secs_f64();
+}
+
+/// The path's escalation record for the exact step: the `fx128` one if
+/// there was one, else a new one from `T`; one precision per segment.
+fn exact_escalation_of<T: Scalar>(path: &mut Path<T>) -> Escalation {
+    let mut esc = path.info.escalation.take().unwrap_or_else(|| Escalation {
+        from: T::NAME,
+        reason: format!("{} in {}: {}", path.status.as_str(), T::NAME, path.message),
+        pivots_before: path.info.pivots,
+        seconds_before: path.info.solve_seconds,
+        ..Escalation::default()
+    });
+    if esc.segment_precisions.len() != path.segments.len() {
+        esc.segment_precisions = vec![T::NAME; path.segments.len()];
+    }
+    esc
+}
+
+/// The exact tracer started inside segment `k` on its basis
+/// ([`crate::exact::trace_from`]), if its first segment stays feasible back
+/// to segment `k`'s start.
+fn exact_attempt<T: Scalar>(
+    problem: &Plcp<T>,
+    settings: &Settings<T>,
+    path: &Path<T>,
+    k: usize,
+) -> Result<crate::exact::ExactPath, String> {
+    let seg = &path.segments[k];
+    if seg.unbounded || seg.lambda_to <= seg.lambda_from || !seg.lambda_to.is_finite() {
+        return Err(format!("segment {k} has no interior to restart in"));
+    }
+    let basis: Vec<Var> = seg
+        .basis
+        .iter()
+        .copied()
+        .filter(|v| matches!(v, Var::Z(_) | Var::W(_) | Var::U(_)))
+        .collect();
+    let mid = seg.lambda_from + (seg.lambda_to - seg.lambda_from) * T::from_f64(0.5);
+    let rest =
+        crate::exact::trace_from(problem, settings, &basis, mid).map_err(|e| e.to_string())?;
+    exact_feasible_back(seg, &rest.path, k)?;
+    Ok(rest)
+}
+
+/// The same check as for fx128 ([`feasible_back_to`]): no event between
+/// segment `k`'s start and the exact restart inside it.
+fn exact_feasible_back<T: Scalar>(
+    seg: &Segment<T>,
+    rest: &Path<f64>,
+    k: usize,
+) -> Result<(), String> {
+    let Some(s) = rest.segments.first() else {
+        return Ok(());
+    };
+    let back = seg.lambda_from.to_f64() - s.lambda_from;
+    let span = 1f64
+        .max(seg.lambda_from.to_f64().abs())
+        .max(back.abs())
+        .max(if s.unbounded {
+            1.0
+        } else {
+            (s.lambda_to - s.lambda_from).abs()
+        });
+    let gap = T::eps().to_f64().sqrt() * span;
+    for (from, slope) in [(&s.z_from, &s.dz), (&s.w_from, &s.dw)] {
+        for i in 0..from.nrows() {
+            let v = from[i] + slope[i] * back;
+            if v < 0.0 && -v > gap * slope[i].abs() {
+                return Err(format!(
+                    "the basis of segment {k} is not the path's at L = {:e} (an event lies between)",
+                    seg.lambda_from.to_f64()
+                ));
+            }
+        }
+    }
+    Ok(())
+}
+
+/// Keeps `path.segments[..k]` and appends the exact `rest` (from `from`
+/// for a warm continuation, `None`: from `lambda0`), rounded once to `T`;
+/// the message, counts and escalation record say so.
+fn splice_exact<T: Scalar>(
+    problem: &Plcp<T>,
+    path: &mut Path<T>,
+    mut esc: Escalation,
+    (k, warm_from): (usize, Option<T>),
+    rest: &crate::exact::ExactPath,
+) {
+    let from = warm_from.unwrap_or(problem.lambda0());
     esc.exact = true;
     esc.lambda_exact = from.to_f64();
     esc.segment_precisions.truncate(k);
     esc.segment_precisions
         .extend(rest.path.segments.iter().map(|_| "exact"));
-    append_rest(path, k, warm.then(|| from.to_f64()), &rest.path);
+    append_rest(path, k, warm_from.map(|l| l.to_f64()), &rest.path);
+    exact_tail_in::<T>(path, k, warm_from, rest, problem.free());
     let r = &rest.path;
     path.message = format!(
         "continued in exact arithmetic from L = {:e} ({} segments kept) after {}: the exact run ended {}. {}",
@@ -586,6 +628,59 @@ pub(crate) fn continue_exactly<T: Scalar>(
     .to_string();
     path.info.pivots += r.info.pivots;
     path.info.turning_points += r.info.turning_points;
-    path.info.solve_seconds += timer.elapsed().as_secs_f64();
     path.info.escalation = Some(esc);
+}
+
+/// Rounds the exact tail appended from segment `k` on (by [`append_rest`],
+/// through `f64`) once from its exact values to `T`: segments (the first
+/// extended back to `back_to` exactly), breakpoints, and the end of a path
+/// that reached `L_max` or ends on a ray. In `f64` this changes nothing; in
+/// `fx128` the tail through `f64` carried `f64`'s rounding (residual `5e-11`
+/// where the segment was extended back), which fx128's residual guard
+/// rejects.
+fn exact_tail_in<T: Scalar>(
+    path: &mut Path<T>,
+    k: usize,
+    back_to: Option<T>,
+    rest: &crate::exact::ExactPath,
+    p: usize,
+) {
+    let to_t = crate::exact::rational_to::<T>;
+    let n = path.end.z.nrows();
+    for (j, es) in rest.exact_segments.iter().enumerate() {
+        let Some(seg) = path.segments.get_mut(k + j) else {
+            break;
+        };
+        let from = match back_to.filter(|_| j == 0) {
+            Some(l) => crate::exact::to_rational(l),
+            None => es.from.clone(),
+        };
+        let [u, z, w] = es.at::<T>(&from, p, n);
+        let [du, dz, dw] = es.slopes::<T>(p, n);
+        seg.lambda_from = to_t(&from);
+        if let Some(to) = &es.to {
+            seg.lambda_to = to_t(to);
+        }
+        (seg.u_from, seg.z_from, seg.w_from) = (u, z, w);
+        (seg.du, seg.dz, seg.dw) = (du, dz, dw);
+    }
+    let nb = rest.breakpoints.len();
+    let first = path.breakpoints.len().saturating_sub(nb);
+    for (b, e) in path.breakpoints[first..].iter_mut().zip(&rest.breakpoints) {
+        b.lambda = to_t(e);
+    }
+    let ends = matches!(rest.path.status, Status::Reached | Status::UnboundedRay);
+    if let (true, Some(last)) = (ends, rest.exact_segments.last()) {
+        let l = &rest.lambda_reached;
+        let [u, z, w] = last.at::<T>(l, p, n);
+        path.end = Point {
+            lambda: to_t(l),
+            z,
+            w,
+            u,
+        };
+        if rest.path.status == Status::Reached {
+            path.lambda_reached = to_t(l);
+        }
+    }
 }

@@ -122,3 +122,32 @@ fn the_fibonacci_block_is_certified_across_its_short_segment() {
     assert!(c.certified(), "fx128: {}", c.summary());
     assert_eq!(c.bridges, 1);
 }
+
+/// A rounding-level slack that rounding puts on the other side of zero: the
+/// float path of `w_1 = 1e-20 + 2 z_1` (`w_1` basic, constant) certified
+/// against the same problem with `q_1 = -1e-20`, where that basis is
+/// infeasible for every `L`. The rejection names the variable's own value,
+/// `-1e-20`; it named its row's, scaled by a power of two to integers
+/// (`2^119` times too large here; the rotated 3D run of `frames/tests/space.rs`
+/// reported `w430 = -2.9e-4` for `-1.6e-20`).
+#[test]
+fn a_rounding_level_negative_slack_is_reported_with_its_own_value() {
+    let m = Mat::<f64>::from_fn(2, 2, |i, j| if i == j { 2.0 } else { 0.0 });
+    let d = Col::<f64>::from_fn(2, |i| if i == 0 { -1.0 } else { 0.0 });
+    let problem = |q1: f64| {
+        let q = Col::<f64>::from_fn(2, |i| if i == 0 { 1.0 } else { q1 });
+        Plcp::new(m.as_ref(), q.as_ref(), d.as_ref()).unwrap()
+    };
+    let path = plcp::solve(&problem(1e-20), &Settings::default()).unwrap();
+    assert_eq!(path.status, Status::UnboundedRay, "{}", path.message);
+    assert!(path.certify(&problem(1e-20)).certified());
+    for engine in [Engine::Modular, Engine::Bareiss] {
+        let c = exact::certify_with(&problem(-1e-20), &path, engine);
+        let f = c.failure.as_ref().expect("rejected");
+        assert!(
+            f.reason.contains("w1 = -1e-20 < 0 for every L"),
+            "{engine:?}: {}",
+            f.reason
+        );
+    }
+}

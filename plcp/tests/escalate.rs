@@ -188,10 +188,11 @@ fn setting_off_or_in_fx128_changes_nothing() {
 /// names each segment's precision (fx128 first, exact from `lambda_exact`
 /// on). The end at `L_max` had residual 0.5 (the exact tracer read its
 /// tableau's basic values without the part-way driver); it is now the last
-/// segment there. The status is not asserted: the exact tail comes back
+/// segment there. The exact tail comes back rounded once from its exact
+/// values to fx128, so the path ends `reached` and is certified; it came back
 /// rounded to `f64`, and its first segment, extended back into the kept
-/// fx128 segment in `f64`, has residual `5e-11`, above fx128's residual
-/// guard (`docs/limits.md`).
+/// fx128 segment in `f64`, had residual `5e-11`, above fx128's residual
+/// guard, which turned the answer `ill_conditioned`.
 #[test]
 fn exact_tail_reaches_l_max_after_float_segments() {
     let problem = neumann::<fx128>(6, 1e-5)
@@ -225,7 +226,16 @@ fn exact_tail_reaches_l_max_after_float_segments() {
     );
     assert_eq!(path.end.lambda.to_f64(), 20.0);
     let end = plcp::residual::residual(&problem, &path.end);
-    assert!(end.worst() <= 1e-15, "the end at L_max: {end:?}");
+    assert!(end.worst() <= 1e-28, "the end at L_max: {end:?}");
+    assert_eq!(path.status, Status::Reached, "{}", path.message);
+    // the exact breakpoints keep the residuals the exact tracer measured in f64
+    assert!(
+        path.info.residual.worst() <= 1e-15,
+        "{:?}",
+        path.info.residual
+    );
+    let cert = path.certify(&problem);
+    assert!(cert.certified(), "{}", cert.summary());
     assert_eq!(esc.segment_precisions.len(), path.segments.len());
     let float = <fx128 as Scalar>::NAME;
     let first_exact = esc

@@ -234,9 +234,12 @@ fn interval(s: &Solution) -> Result<Interval, String> {
         let var = s.var_of(c).expect("a z or w column");
         if b.is_zero() {
             if a.is_negative() {
+                // the variable's own value, not its row's: the row is scaled
+                // by a power of two (the rotated 3D run's w430 read -2.9e-4
+                // for its value -1.6e-20)
                 return Err(format!(
                     "{var} = {} < 0 for every L",
-                    short(&s.affine(i).0.reduced())
+                    short(&s.value(c, &BigRational::zero()).reduced())
                 ));
             }
         } else if b.is_positive() {
@@ -481,265 +484,410 @@ fn bridge(
     None
 }
 
+/// The exact solver of segment bases: the p-adic lifting, and the
+/// fraction-free tableau brought to life only when a basis needs it.
+struct Bases<'a, T: Scalar> {
+    problem: &'a Plcp<T>,
+    engine: Engine,
+    fresh: Tableau,
+    scaled: Scaled,
+    tableau: Option<Tableau>,
+}
+
+impl<T: Scalar> Bases<'_, T> {
+    /// The fraction-free tableau with the free variables pivoted in, and how
+    /// many could not enter.
+    fn bareiss(&self, cert: &mut Certificate) -> (Tableau, usize) {
+        let mut t = Tableau::new(self.problem);
+        let left = t.pivot_in_free();
+        cert.pivots += self.problem.free() - left;
+        (t, left)
+    }
+
+    /// The exact solution of the basis `target` ([`solve_basis`]).
+    fn solve(&mut self, target: &[usize], cert: &mut Certificate) -> Solution {
+        let Bases {
+            problem,
+            engine,
+            fresh,
+            scaled,
+            tableau,
+        } = self;
+        let problem: &Plcp<T> = problem;
+        let bareiss = |cert: &mut Certificate| -> (Tableau, usize) {
+            let mut t = Tableau::new(problem);
+            let left = t.pivot_in_free();
+            cert.pivots += problem.free() - left;
+            (t, left)
+        };
+        solve_basis(scaled, fresh, tableau, *engine, target, cert, &bareiss)
+    }
+
+    /// The fraction-free tableau, made on first use, pivoted to `target`.
+    fn tableau_at(&mut self, target: &[usize], cert: &mut Certificate) -> Solution {
+        if self.tableau.is_none() {
+            self.tableau = Some(self.bareiss(cert).0);
+        }
+        let t = self.tableau.as_mut().expect("made");
+        pivot_to(t, target, &mut cert.pivots);
+        Solution::from_tableau(t)
+    }
+}
+
+fn fail(segment: usize, reason: String) -> Failure {
+    Failure { segment, reason }
+}
+
+/// What the segment loop carries from one segment to the next.
+struct Chain {
+    /// Where the next segment must start, exactly.
+    start: BigRational,
+    /// The basis (columns) of the last certified segment.
+    prev_target: Option<Vec<usize>>,
+    /// A breakpoint whose leaving variable is not the exact one: resolved if
+    /// the next segment is reached from the exact end.
+    pending: Option<Failure>,
+}
+
 fn run<T: Scalar>(
     problem: &Plcp<T>,
     path: &Path<T>,
     engine: Engine,
     cert: &mut Certificate,
 ) -> Result<(), Failure> {
-    let (p, n) = (problem.free(), problem.n());
+    let p = problem.free();
     let fresh = Tableau::new(problem);
     let scaled = Scaled::new(&fresh);
-    // the fraction-free tableau, brought to life only when a basis needs it
-    let mut tableau: Option<Tableau> = None;
-    let bareiss = |cert: &mut Certificate| -> (Tableau, usize) {
-        let mut t = Tableau::new(problem);
-        let left = t.pivot_in_free();
-        cert.pivots += p - left;
-        (t, left)
+    let mut bases = Bases {
+        problem,
+        engine,
+        fresh,
+        scaled,
+        tableau: None,
     };
     // with a singular free block `u` is not unique: its values are not
     // compared (a nonsingular block modulo a prime is nonsingular; else the
     // tableau's pivots decide, as they did before the lifting)
-    let u_unique = if engine == Engine::Modular && scaled.free_block_nonsingular(p) {
+    let u_unique = if engine == Engine::Modular && bases.scaled.free_block_nonsingular(p) {
         true
     } else {
-        let (t, left) = bareiss(cert);
-        tableau = Some(t);
+        let (t, left) = bases.bareiss(cert);
+        bases.tableau = Some(t);
         left == 0
     };
-    let limit = T::eps().to_f64().sqrt();
-    let fail = |segment: usize, reason: String| Failure { segment, reason };
-    let lambda_max = path.lambda_max.map(to_rational);
-    let mut start = to_rational(path.lambda0);
-    // the basis (columns) of the last certified segment
-    let mut prev_target: Option<Vec<usize>> = None;
-    // a breakpoint whose leaving variable is not the exact one: resolved if
-    // the next segment is reached from the exact end
-    let mut pending: Option<Failure> = None;
-    let nseg = path.segments.len();
-    if nseg == 0 {
-        // a path without segments claims a solution at L0 only: certify the
-        // basis of its end point (z_i basic where z_i > w_i)
-        if path.status.is_success() {
-            let basis: Vec<usize> = (0..n)
-                .map(|i| {
-                    let v = if path.end.z[i] > path.end.w[i] {
-                        Var::Z(i)
-                    } else {
-                        Var::W(i)
-                    };
-                    col_of(p, n, v).expect("a pair")
-                })
-                .chain(0..p)
-                .collect();
-            let t = tableau.get_or_insert_with(|| bareiss(cert).0);
-            pivot_to(t, &basis, &mut cert.pivots);
-            let (lo, hi) = interval(&Solution::from_tableau(t)).map_err(|r| fail(0, r))?;
-            if lo.as_ref().is_some_and(|l| l > &start) || hi.as_ref().is_some_and(|h| h < &start) {
-                return Err(fail(
-                    0,
-                    format!(
-                        "the end point's basis is infeasible at L0 = {}",
-                        short(&start)
-                    ),
-                ));
-            }
-        }
+    let mut chain = Chain {
+        start: to_rational(path.lambda0),
+        prev_target: None,
+        pending: None,
+    };
+    if path.segments.is_empty() {
+        return end_point(path, &mut bases, &chain.start, cert);
+    }
+    for k in 0..path.segments.len() {
+        segment(path, k, &mut bases, &mut chain, u_unique, cert)?;
+    }
+    path_end(path, &chain.start)
+}
+
+/// A path without segments claims a solution at `L0` only: certify the
+/// basis of its end point (`z_i` basic where `z_i > w_i`).
+fn end_point<T: Scalar>(
+    path: &Path<T>,
+    bases: &mut Bases<'_, T>,
+    start: &BigRational,
+    cert: &mut Certificate,
+) -> Result<(), Failure> {
+    if !path.status.is_success() {
         return Ok(());
     }
-    for (k, seg) in path.segments.iter().enumerate() {
-        // 1. a complementary basis
-        let mut seen = vec![0u8; n];
-        for v in &seg.basis {
-            match *v {
-                Var::Z(i) | Var::W(i) if i < n => seen[i] += 1,
-                Var::U(j) if j < p => {}
-                other => return Err(fail(k, format!("{other} cannot be in a segment's basis"))),
-            }
-        }
-        if let Some(i) = seen.iter().position(|&s| s != 1) {
-            return Err(fail(
-                k,
-                format!(
-                    "the basis is not complementary: pair {i} appears {} times",
-                    seen[i]
-                ),
-            ));
-        }
-        // Lemke on the Schur reduction lists z and w only (every u basic);
-        // Wolfe's long form lists the basic u (the others held at zero, their
-        // dependent rows kept by artificial variables)
-        let all_u = !seg.basis.iter().any(|v| matches!(v, Var::U(_)));
-        let target: Vec<usize> = seg
-            .basis
-            .iter()
-            .map(|v| col_of(p, n, *v).expect("checked"))
-            .chain((0..p).filter(|_| all_u))
-            .collect();
-        let mut solve = |target: &[usize], cert: &mut Certificate| {
-            solve_basis(
-                &scaled,
-                &fresh,
-                &mut tableau,
-                engine,
-                target,
-                cert,
-                &bareiss,
-            )
-        };
-        let t = solve(&target, cert);
-        // 2. feasible where it starts, directly or across a bridge of exact
-        // bases from the previous segment's
-        let (lo, hi) = interval(&t).map_err(|r| fail(k, r))?;
-        let outside = |start: &BigRational| {
-            lo.as_ref().is_some_and(|l| l > start) || hi.as_ref().is_some_and(|h| h < start)
-        };
-        let up = seg.lambda_to >= seg.lambda_from;
-        if outside(&start) && up {
-            if let Some(prev) = &prev_target {
-                if let Some((bases, at)) =
-                    bridge(prev, &target, &start, limit, &mut |b, c| solve(b, c), cert)
-                {
-                    if !outside(&at) {
-                        let span = rational_to_f64(&(&at - &start)).abs()
-                            / rational_to_f64(&start).abs().max(1.0);
-                        cert.bridges += bases;
-                        cert.bridge_span = cert.bridge_span.max(span);
-                        start = at;
-                    }
-                }
-            }
-        }
-        let start_k = start.clone();
-        let below = lo.as_ref().is_some_and(|l| l > &start);
-        let above = hi.as_ref().is_some_and(|h| h < &start);
-        if let Some(f) = pending.take() {
-            if below || above {
-                return Err(f);
-            }
-            cert.reordered += 1;
-        }
-        if below || above {
-            let bad = (0..t.basis.len())
-                .filter(|&i| t.signed(t.basis[i]))
-                .find(|&i| {
-                    let (a, b) = t.affine(i);
-                    (a + b * &start).is_negative()
-                })
-                .and_then(|i| t.var_of(t.basis[i]))
-                .map_or(String::new(), |v| {
-                    format!(
-                        " ({v} = {} there)",
-                        short(&value_at(&t, v, &start).reduced())
-                    )
-                });
-            return Err(fail(
-                k,
-                format!(
-                    "the basis is infeasible where the segment starts, L = {}{bad}; it is feasible on [{}, {}]",
-                    short(&start),
-                    lo.as_ref().map_or("-inf".into(), short),
-                    hi.as_ref().map_or("inf".into(), short)
-                ),
-            ));
-        }
-        // 3. where it ends
-        let last = k + 1 == nseg;
-        let end_float = seg.lambda_to.to_f64();
-        let end = if seg.unbounded {
-            if let Some(h) = &hi {
-                return Err(fail(
-                    k,
-                    format!("claimed to hold for every larger L, but a basic variable reaches zero at L = {}", short(h)),
-                ));
-            }
-            None
-        } else if last && path.status == Status::Reached && lambda_max.is_some() {
-            let lm = lambda_max.clone().expect("checked");
-            if hi.as_ref().is_some_and(|h| h < &lm) {
-                return Err(fail(
-                    k,
-                    format!(
-                        "the path claims L_max = {} reached, but a basic variable reaches zero at L = {} before",
-                        short(&lm),
-                        short(hi.as_ref().expect("checked"))
-                    ),
-                ));
-            }
-            Some(lm)
-        } else {
-            let exact = if up { hi.clone() } else { lo.clone() };
-            match exact {
-                Some(e) => Some(e),
-                None if last && !path.status.is_success() => {
-                    // the path stopped here for another reason (pivot limit,
-                    // ill-conditioning): certify up to where it stopped
-                    Some(to_rational(seg.lambda_to))
-                }
-                None => {
-                    return Err(fail(
-                        k,
-                        format!(
-                            "no basic variable reaches zero as L {} from {}: the breakpoint at L = {end_float:e} does not exist exactly",
-                            if up { "rises" } else { "falls" },
-                            short(&start)
-                        ),
-                    ))
-                }
-            }
-        };
-        // the breakpoint's leaving variable must be zero at the exact end
-        if let Some(e) = &end {
-            if let Some(bp) = path.breakpoints.iter().find(|b| b.segment == k + 1) {
-                let lv = bp.leaving;
-                let in_basis = t.col_of(lv).is_some_and(|c| t.is_basic(c));
-                if matches!(lv, Var::Z(_) | Var::W(_)) && in_basis {
-                    let v = value_at(&t, lv, e);
-                    if !v.is_zero() {
-                        let f = fail(
-                            k,
-                            format!(
-                                "the breakpoint's leaving variable {lv} is {} at the segment's exact end L = {}, not zero (the float breakpoint is L = {:e})",
-                                short(&v.reduced()),
-                                short(e),
-                                bp.lambda.to_f64()
-                            ),
-                        );
-                        // another variable reaches zero first, exactly: the
-                        // float path took the two events in the other order.
-                        // Right to rounding if the next segment is reached
-                        // from here (directly or by a bridge)
-                        if last {
-                            return Err(f);
-                        }
-                        pending = Some(f);
-                    }
-                }
-            }
-            // the float breakpoint must be the exact one up to the working
-            // precision's trust level (sqrt(eps), as the residual guard)
-            let diff = rel_diff(end_float, e, &start);
-            if !within(diff, limit) && (!last || path.status.is_success()) {
-                return Err(fail(
-                    k,
-                    format!(
-                        "the segment ends exactly at L = {}, but the path puts its breakpoint at L = {end_float:e} (relative difference {diff:.1e} > sqrt(eps) = {limit:.1e} in {})",
-                        short(e),
-                        T::NAME
-                    ),
-                ));
-            }
-            cert.max_rel_diff = cert.max_rel_diff.max(diff);
-            cert.breakpoints.push(e.clone());
-            start = e.clone();
-        }
-        // the float values at both ends (slopes for an unbounded segment)
-        check_values(&t, seg, &start_k, end.as_ref(), u_unique, limit).map_err(|r| fail(k, r))?;
-        cert.segments += 1;
-        prev_target = Some(target);
+    let (p, n) = (bases.problem.free(), bases.problem.n());
+    let basis: Vec<usize> = (0..n)
+        .map(|i| {
+            let v = if path.end.z[i] > path.end.w[i] {
+                Var::Z(i)
+            } else {
+                Var::W(i)
+            };
+            col_of(p, n, v).expect("a pair")
+        })
+        .chain(0..p)
+        .collect();
+    let (lo, hi) = interval(&bases.tableau_at(&basis, cert)).map_err(|r| fail(0, r))?;
+    if lo.as_ref().is_some_and(|l| l > start) || hi.as_ref().is_some_and(|h| h < start) {
+        return Err(fail(
+            0,
+            format!(
+                "the end point's basis is infeasible at L0 = {}",
+                short(start)
+            ),
+        ));
     }
-    // the end the status claims
+    Ok(())
+}
+
+/// The columns of segment `k`'s basis, checked complementary (1.): Lemke on
+/// the Schur reduction lists `z` and `w` only (every `u` basic); Wolfe's long
+/// form lists the basic `u` (the others held at zero, their dependent rows
+/// kept by artificial variables).
+fn segment_target(basis: &[Var], p: usize, n: usize, k: usize) -> Result<Vec<usize>, Failure> {
+    let mut seen = vec![0u8; n];
+    for v in basis {
+        match *v {
+            Var::Z(i) | Var::W(i) if i < n => seen[i] += 1,
+            Var::U(j) if j < p => {}
+            other => return Err(fail(k, format!("{other} cannot be in a segment's basis"))),
+        }
+    }
+    if let Some(i) = seen.iter().position(|&s| s != 1) {
+        return Err(fail(
+            k,
+            format!(
+                "the basis is not complementary: pair {i} appears {} times",
+                seen[i]
+            ),
+        ));
+    }
+    let all_u = !basis.iter().any(|v| matches!(v, Var::U(_)));
+    Ok(basis
+        .iter()
+        .map(|v| col_of(p, n, *v).expect("checked"))
+        .chain((0..p).filter(|_| all_u))
+        .collect())
+}
+
+/// Certifies segment `k` and moves `chain` to its exact end.
+fn segment<T: Scalar>(
+    path: &Path<T>,
+    k: usize,
+    bases: &mut Bases<'_, T>,
+    chain: &mut Chain,
+    u_unique: bool,
+    cert: &mut Certificate,
+) -> Result<(), Failure> {
+    let (p, n) = (bases.problem.free(), bases.problem.n());
+    let seg = &path.segments[k];
+    let target = segment_target(&seg.basis, p, n, k)?;
+    let t = bases.solve(&target, cert);
+    // 2. feasible where it starts, directly or across a bridge of exact
+    // bases from the previous segment's
+    let (lo, hi) = interval(&t).map_err(|r| fail(k, r))?;
+    let up = seg.lambda_to >= seg.lambda_from;
+    bridge_to(bases, chain, &target, (&lo, &hi), up, cert);
+    let start_k = chain.start.clone();
+    check_start(&t, (&lo, &hi), chain, k, cert)?;
+    // 3. where it ends
+    let end = segment_end(path, k, (&lo, &hi), &chain.start)?;
+    if let Some(e) = &end {
+        check_breakpoint(path, k, &t, e, chain, cert)?;
+    }
+    // the float values at both ends (slopes for an unbounded segment)
+    let limit = T::eps().to_f64().sqrt();
+    check_values(&t, seg, &start_k, end.as_ref(), u_unique, limit).map_err(|r| fail(k, r))?;
+    cert.segments += 1;
+    chain.prev_target = Some(target);
+    Ok(())
+}
+
+/// Where the segment's interval misses the chain's start (as `L` rises),
+/// follows the exact path from the previous segment's basis across the gap
+/// ([`bridge`]) and moves the start to where this basis takes over.
+fn bridge_to<T: Scalar>(
+    bases: &mut Bases<'_, T>,
+    chain: &mut Chain,
+    target: &[usize],
+    (lo, hi): (&Option<BigRational>, &Option<BigRational>),
+    up: bool,
+    cert: &mut Certificate,
+) {
+    let outside = |start: &BigRational| {
+        lo.as_ref().is_some_and(|l| l > start) || hi.as_ref().is_some_and(|h| h < start)
+    };
+    if !outside(&chain.start) || !up {
+        return;
+    }
+    let Some(prev) = &chain.prev_target else {
+        return;
+    };
+    let limit = T::eps().to_f64().sqrt();
+    let start = &chain.start;
+    if let Some((n, at)) = bridge(
+        prev,
+        target,
+        start,
+        limit,
+        &mut |b, c| bases.solve(b, c),
+        cert,
+    ) {
+        if !outside(&at) {
+            let span =
+                rational_to_f64(&(&at - start)).abs() / rational_to_f64(start).abs().max(1.0);
+            cert.bridges += n;
+            cert.bridge_span = cert.bridge_span.max(span);
+            chain.start = at;
+        }
+    }
+}
+
+/// The basis is feasible where the segment starts (2.); a pending
+/// reordered breakpoint is resolved by that, or is the failure.
+fn check_start(
+    t: &Solution,
+    (lo, hi): (&Option<BigRational>, &Option<BigRational>),
+    chain: &mut Chain,
+    k: usize,
+    cert: &mut Certificate,
+) -> Result<(), Failure> {
+    let start = &chain.start;
+    let below = lo.as_ref().is_some_and(|l| l > start);
+    let above = hi.as_ref().is_some_and(|h| h < start);
+    if let Some(f) = chain.pending.take() {
+        if below || above {
+            return Err(f);
+        }
+        cert.reordered += 1;
+    }
+    if !(below || above) {
+        return Ok(());
+    }
+    let bad = (0..t.basis.len())
+        .filter(|&i| t.signed(t.basis[i]))
+        .find(|&i| {
+            let (a, b) = t.affine(i);
+            (a + b * start).is_negative()
+        })
+        .and_then(|i| t.var_of(t.basis[i]))
+        .map_or(String::new(), |v| {
+            format!(" ({v} = {} there)", short(&value_at(t, v, start).reduced()))
+        });
+    Err(fail(
+        k,
+        format!(
+            "the basis is infeasible where the segment starts, L = {}{bad}; it is feasible on [{}, {}]",
+            short(start),
+            lo.as_ref().map_or("-inf".into(), short),
+            hi.as_ref().map_or("inf".into(), short)
+        ),
+    ))
+}
+
+/// The exact end of segment `k` (3.): `None` for an unbounded ray, `L_max`
+/// for the last segment of a `reached` path, else where its interval ends
+/// in its direction (where a stopped path stopped, if it does not end).
+fn segment_end<T: Scalar>(
+    path: &Path<T>,
+    k: usize,
+    (lo, hi): (&Option<BigRational>, &Option<BigRational>),
+    start: &BigRational,
+) -> Result<Option<BigRational>, Failure> {
+    let seg = &path.segments[k];
+    let last = k + 1 == path.segments.len();
+    let up = seg.lambda_to >= seg.lambda_from;
+    let lambda_max = path.lambda_max.map(to_rational);
+    if seg.unbounded {
+        if let Some(h) = hi {
+            return Err(fail(
+                k,
+                format!("claimed to hold for every larger L, but a basic variable reaches zero at L = {}", short(h)),
+            ));
+        }
+        return Ok(None);
+    }
+    if let Some(lm) = lambda_max.filter(|_| last && path.status == Status::Reached) {
+        if hi.as_ref().is_some_and(|h| h < &lm) {
+            return Err(fail(
+                k,
+                format!(
+                    "the path claims L_max = {} reached, but a basic variable reaches zero at L = {} before",
+                    short(&lm),
+                    short(hi.as_ref().expect("checked"))
+                ),
+            ));
+        }
+        return Ok(Some(lm));
+    }
+    let exact = if up { hi.clone() } else { lo.clone() };
+    match exact {
+        Some(e) => Ok(Some(e)),
+        // the path stopped here for another reason (pivot limit,
+        // ill-conditioning): certify up to where it stopped
+        None if last && !path.status.is_success() => Ok(Some(to_rational(seg.lambda_to))),
+        None => Err(fail(
+            k,
+            format!(
+                "no basic variable reaches zero as L {} from {}: the breakpoint at L = {:e} does not exist exactly",
+                if up { "rises" } else { "falls" },
+                short(start),
+                seg.lambda_to.to_f64()
+            ),
+        )),
+    }
+}
+
+/// At the exact end `e` of segment `k`: the breakpoint's leaving variable
+/// is zero there (or the failure is pending, to be resolved by the next
+/// segment), and the float breakpoint is the exact one to `sqrt(eps)`;
+/// records the end and moves the chain's start there.
+fn check_breakpoint<T: Scalar>(
+    path: &Path<T>,
+    k: usize,
+    t: &Solution,
+    e: &BigRational,
+    chain: &mut Chain,
+    cert: &mut Certificate,
+) -> Result<(), Failure> {
+    let seg = &path.segments[k];
+    let last = k + 1 == path.segments.len();
+    let end_float = seg.lambda_to.to_f64();
+    let limit = T::eps().to_f64().sqrt();
+    if let Some(bp) = path.breakpoints.iter().find(|b| b.segment == k + 1) {
+        let lv = bp.leaving;
+        let in_basis = t.col_of(lv).is_some_and(|c| t.is_basic(c));
+        if matches!(lv, Var::Z(_) | Var::W(_)) && in_basis {
+            let v = value_at(t, lv, e);
+            if !v.is_zero() {
+                let f = fail(
+                    k,
+                    format!(
+                        "the breakpoint's leaving variable {lv} is {} at the segment's exact end L = {}, not zero (the float breakpoint is L = {:e})",
+                        short(&v.reduced()),
+                        short(e),
+                        bp.lambda.to_f64()
+                    ),
+                );
+                // another variable reaches zero first, exactly: the
+                // float path took the two events in the other order.
+                // Right to rounding if the next segment is reached
+                // from here (directly or by a bridge)
+                if last {
+                    return Err(f);
+                }
+                chain.pending = Some(f);
+            }
+        }
+    }
+    // the float breakpoint must be the exact one up to the working
+    // precision's trust level (sqrt(eps), as the residual guard)
+    let diff = rel_diff(end_float, e, &chain.start);
+    if !within(diff, limit) && (!last || path.status.is_success()) {
+        return Err(fail(
+            k,
+            format!(
+                "the segment ends exactly at L = {}, but the path puts its breakpoint at L = {end_float:e} (relative difference {diff:.1e} > sqrt(eps) = {limit:.1e} in {})",
+                short(e),
+                T::NAME
+            ),
+        ));
+    }
+    cert.max_rel_diff = cert.max_rel_diff.max(diff);
+    cert.breakpoints.push(e.clone());
+    chain.start = e.clone();
+    Ok(())
+}
+
+/// The end the status claims: an unbounded last segment for
+/// `unbounded_ray`, `L_max` for `reached`.
+fn path_end<T: Scalar>(path: &Path<T>, start: &BigRational) -> Result<(), Failure> {
+    let nseg = path.segments.len();
     let last = path.segments.last().expect("nseg > 0");
     if path.status == Status::UnboundedRay && !last.unbounded {
         return Err(fail(
@@ -748,14 +896,14 @@ fn run<T: Scalar>(
         ));
     }
     if path.status == Status::Reached {
-        if let Some(lm) = &lambda_max {
-            if &start != lm {
+        if let Some(lm) = path.lambda_max.map(to_rational) {
+            if start != &lm {
                 return Err(fail(
                     nseg,
                     format!(
                         "status reached, but the path ends at L = {} before L_max = {}",
-                        short(&start),
-                        short(lm)
+                        short(start),
+                        short(&lm)
                     ),
                 ));
             }

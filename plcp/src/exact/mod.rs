@@ -97,6 +97,18 @@ pub fn rational_to_f64(x: &BigRational) -> f64 {
     })
 }
 
+/// A rational as the nearest value of `T`: its nearest `f64` plus the
+/// nearest `f64` of the remainder (an `fx128` to double-double accuracy; one
+/// rounding for `f64`, the remainder being below half an ulp).
+pub(crate) fn rational_to<T: crate::Scalar>(x: &BigRational) -> T {
+    let hi = rational_to_f64(x);
+    if !hi.is_finite() || T::eps().to_f64() >= f64::EPSILON {
+        return T::from_f64(hi);
+    }
+    let lo = rational_to_f64(&(x - f64_to_rational(hi)));
+    T::from_f64(hi) + T::from_f64(lo)
+}
+
 /// A rational for people: `4`, `13/3` when numerator and denominator have at
 /// most 9 digits, else the nearest `f64` in Rust's shortest form (`0.1013...`).
 pub fn short(x: &BigRational) -> String {

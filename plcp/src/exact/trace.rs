@@ -53,6 +53,46 @@ pub struct ExactPath {
     pub breakpoints: Vec<BigRational>,
     /// The exact parameter value where the path ended.
     pub lambda_reached: BigRational,
+    /// The exact values of every segment, as in `path.segments`: the
+    /// escalation rounds them to its working precision (`fx128` values from
+    /// `f64` ones would carry `f64`'s rounding into an `fx128` path).
+    pub(crate) exact_segments: Vec<ExactSegment>,
+}
+
+/// One segment of an [`ExactPath`] in exact arithmetic: where it starts and
+/// ends, and `(value at the start, slope)` of every variable, by column
+/// (`u`, then `z`, then `w`, unscaled).
+#[derive(Clone, Debug)]
+pub(crate) struct ExactSegment {
+    pub from: BigRational,
+    pub to: Option<BigRational>,
+    pub vals: Vec<(BigRational, BigRational)>,
+}
+
+impl ExactSegment {
+    /// The values `(u, z, w)` at `lambda`, each rounded once to `T`.
+    pub fn at<T: Scalar>(&self, lambda: &BigRational, p: usize, n: usize) -> [Col<T>; 3] {
+        let dl = lambda - &self.from;
+        let x = |c: usize| -> T {
+            let (v, d) = &self.vals[c];
+            super::rational_to(&(v + d * &dl))
+        };
+        [
+            Col::from_fn(p, &x),
+            Col::from_fn(n, |i| x(p + i)),
+            Col::from_fn(n, |i| x(p + n + i)),
+        ]
+    }
+
+    /// The slopes `(du, dz, dw)`, each rounded once to `T`.
+    pub fn slopes<T: Scalar>(&self, p: usize, n: usize) -> [Col<T>; 3] {
+        let d = |c: usize| -> T { super::rational_to(&self.vals[c].1) };
+        [
+            Col::from_fn(p, &d),
+            Col::from_fn(n, |i| d(p + i)),
+            Col::from_fn(n, |i| d(p + n + i)),
+        ]
+    }
 }
 
 /// Traces `problem` from `lambda0` exactly (see the module documentation).
@@ -189,6 +229,7 @@ struct Run {
     breakpoints: Vec<Breakpoint<f64>>,
     exact_bps: Vec<BigRational>,
     segments: Vec<Segment<f64>>,
+    exact_segments: Vec<ExactSegment>,
     ray: Option<Ray<f64>>,
     /// The entering column of the last step (for the segment basis).
     driver: Option<usize>,
@@ -242,6 +283,7 @@ impl Run {
             breakpoints: Vec::new(),
             exact_bps: Vec::new(),
             segments: Vec::new(),
+            exact_segments: Vec::new(),
             ray: None,
             driver: None,
         }
@@ -646,6 +688,11 @@ impl Run {
             u_from: Col::from_fn(p, |j| f(j, false)),
             du: Col::from_fn(p, |j| f(j, true)),
         });
+        self.exact_segments.push(ExactSegment {
+            from: self.lambda.clone(),
+            to: to.cloned(),
+            vals,
+        });
     }
 
     fn point(&self, t: &Tableau) -> Point<f64> {
@@ -739,6 +786,7 @@ impl Run {
             path,
             breakpoints: self.exact_bps,
             lambda_reached: self.lambda,
+            exact_segments: self.exact_segments,
         }
     }
 }
