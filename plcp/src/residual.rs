@@ -4,15 +4,22 @@ use crate::matrix::MatrixRef;
 use crate::path::{Path, Point, Residual};
 use crate::problem::Plcp;
 use crate::scalar::Scalar;
+use crate::tolerance::residual_unit;
 use faer::{ColRef, MatRef};
 
-/// The residuals of `point` for `problem`, each relative to the data's scale:
+/// The residuals of `point` for `problem`, each relative to the data's scale
+/// (the rule and its reasons: [`residual_unit`]):
 ///
-/// * equation: `max_r |(M x + q + L d)_r - (0 or w_r)| / s_r`, with
-///   `s_r = max(1, |q_r|, |L d_r|, max_j |M_rj x_j|)`;
-/// * feasibility: `max(0, -min_i z_i / sz, -min_i w_i / sw)`, `sz = max(1, max |z|)`,
-///   `sw = max(1, max |w|)`;
+/// * equation: `max_r |(M x + q + L d)_r - (0 or w_r)| / max(s_r, U)`, with
+///   `s_r = max(|q_r|, |L d_r|, |w_r|, max_j |M_rj x_j|)` the row's own terms
+///   and `U` the data's unit;
+/// * feasibility: `max(0, -min_i z_i / sz, -min_i w_i / sw)`,
+///   `sz = max(U / max |M_ij|, max |z|)` (`M_ij` over the columns of nonzero
+///   `z`), `sw = max(U, max |w|)`;
 /// * complementarity: `max_i |z_i w_i| / (sz sw)`.
+///
+/// A uniform scaling of `(M, q, d)` (and of `w` with it) leaves all three
+/// unchanged (bit for bit under a power of two).
 pub fn residual<T: Scalar>(problem: &Plcp<T>, point: &Point<T>) -> Residual {
     residual_matrix(
         problem.matrix(),
@@ -48,9 +55,11 @@ pub fn residual_matrix<T: Scalar>(
     // written over slices so that it vectorises), in the working precision
     let mut acc: Vec<T> = (0..dim).map(|r| q[r] + point.lambda * d[r]).collect();
     let mut big: Vec<T> = (0..dim)
-        .map(|r| T::one().max(q[r].abs()).max((point.lambda * d[r]).abs()))
+        .map(|r| q[r].abs().max((point.lambda * d[r]).abs()))
         .collect();
     let mut colbuf: Vec<T> = Vec::new();
+    // the largest |M_ij| over the columns of nonzero z (z's unit is U / that)
+    let mut mz = T::zero();
     for j in 0..dim {
         let xj = if j < p { point.u[j] } else { point.z[j - p] };
         if xj == T::zero() {
@@ -64,6 +73,9 @@ pub fn residual_matrix<T: Scalar>(
                 for (&i, &mij) in rows.iter().zip(vals) {
                     acc[i] += mij * xj;
                     big[i] = big[i].max(mij.abs() * xa);
+                }
+                if j >= p {
+                    mz = vals.iter().fold(mz, |a, v| a.max(v.abs()));
                 }
                 continue;
             }
@@ -80,18 +92,27 @@ pub fn residual_matrix<T: Scalar>(
             *a += mij * xj;
             *s = (*s).max(mij.abs() * xa);
         }
+        if j >= p {
+            mz = col.iter().fold(mz, |a, v| a.max(v.abs()));
+        }
     }
-    let mut scale: Vec<f64> = big.iter().map(|s| s.to_f64()).collect();
+    let unit = residual_unit(q, d);
     let mut eq = 0.0f64;
     for r in 0..dim {
         let mut v = acc[r];
+        let mut scale = big[r].to_f64();
         if r >= p {
             v -= point.w[r - p];
-            scale[r] = scale[r].max(point.w[r - p].to_f64().abs());
+            scale = scale.max(point.w[r - p].to_f64().abs());
         }
-        eq = eq.max(v.to_f64().abs() / scale[r]);
+        eq = eq.max(v.to_f64().abs() / scale.max(unit));
     }
-    with_signs(eq, point)
+    // w is in the rows' unit; z is `U / max |M_ij|` in size (an LCP with `q`
+    // of 1e-4 has `z` of 1e-4: against an absolute 1 its violations went
+    // unseen); with no nonzero z the unit of z divides only zeros
+    let mz = mz.to_f64();
+    let z_unit = if mz > 0.0 { unit / mz } else { unit };
+    signs_in_units(eq, point, z_unit, unit)
 }
 
 /// The residual of `point` with the equation part `equation` (which depends
@@ -99,9 +120,20 @@ pub fn residual_matrix<T: Scalar>(
 /// feasibility `max(-z_i / max(1, |z|), -w_i / max(1, |w|), 0)` and
 /// complementarity `max |z_i w_i| / (max(1, |z|) max(1, |w|))`.
 pub(crate) fn with_signs<T: Scalar>(equation: f64, point: &Point<T>) -> Residual {
+    signs_in_units(equation, point, 1.0, 1.0)
+}
+
+/// [`with_signs`] with `z` measured against `max(z_unit, max |z|)` and `w`
+/// against `max(w_unit, max |w|)` (see [`residual_unit`]).
+fn signs_in_units<T: Scalar>(
+    equation: f64,
+    point: &Point<T>,
+    z_unit: f64,
+    w_unit: f64,
+) -> Residual {
     let n = point.z.nrows();
-    let sz = (0..n).fold(1.0f64, |a, i| a.max(point.z[i].to_f64().abs()));
-    let sw = (0..n).fold(1.0f64, |a, i| a.max(point.w[i].to_f64().abs()));
+    let sz = (0..n).fold(z_unit, |a, i| a.max(point.z[i].to_f64().abs()));
+    let sw = (0..n).fold(w_unit, |a, i| a.max(point.w[i].to_f64().abs()));
     let mut feas = 0.0f64;
     let mut comp = 0.0f64;
     for i in 0..n {
