@@ -117,15 +117,10 @@ pub fn residual_matrix<T: Scalar>(
 
 /// The residual of `point` with the equation part `equation` (which depends
 /// on the form: measured by the caller) and the sign parts measured here:
-/// feasibility `max(-z_i / max(1, |z|), -w_i / max(1, |w|), 0)` and
-/// complementarity `max |z_i w_i| / (max(1, |z|) max(1, |w|))`.
-pub(crate) fn with_signs<T: Scalar>(equation: f64, point: &Point<T>) -> Residual {
-    signs_in_units(equation, point, 1.0, 1.0)
-}
-
-/// [`with_signs`] with `z` measured against `max(z_unit, max |z|)` and `w`
-/// against `max(w_unit, max |w|)` (see [`residual_unit`]).
-fn signs_in_units<T: Scalar>(
+/// feasibility `max(-z_i / sz, -w_i / sw, 0)` and complementarity
+/// `max |z_i w_i| / (sz sw)`, `sz = max(z_unit, max |z|)`,
+/// `sw = max(w_unit, max |w|)` (the units: [`residual_unit`]).
+pub(crate) fn signs_in_units<T: Scalar>(
     equation: f64,
     point: &Point<T>,
     z_unit: f64,
