@@ -413,5 +413,13 @@ fn tiny_steps_keep_the_rigid_phase_exact() {
         .chain(&r.end.v)
         .fold(0.0f64, |m, x| m.max(x.abs()));
     assert!(moved < 1e-12, "{moved}");
-    assert!(r.worst_residual() < 1e-13, "{}", r.worst_residual());
+    // every warm step stays warm: its residual is far below plcp's guard
+    assert_eq!(r.cold_restarts, 0);
+    // plcp measures a step's residual against the data's unit
+    // (`plcp::tolerance::residual_unit`): for a warm step the increment `d`
+    // of the right-hand side, 2.7e-4 of its size here, not an absolute 1.
+    // The rows of the rigid velocities carry 3e-18 .. 1e-15 of rounding
+    // (0.01 .. 4 eps of the data, drifting over the 10^4 steps), which reads
+    // 7.5e-12 against the increment (it read 1e-15 against the floor of 1)
+    assert!(r.worst_residual() < 1e-10, "{}", r.worst_residual());
 }

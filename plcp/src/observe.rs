@@ -331,6 +331,8 @@ where
             last_basis: Vec::new(),
             emitted: 0,
             breakpoints_at: Vec::new(),
+            units: (keep != Keep::All).then(|| crate::residual::SignUnits::new(problem)),
+            ends: None,
         };
         ACTIVE.with(|a| a.replace(Some(Box::new(active))))
     } else {
@@ -525,6 +527,24 @@ struct Active<T: Scalar> {
     emitted: usize,
     /// Breakpoints recorded when each segment was emitted.
     breakpoints_at: Vec<usize>,
+    /// The problem's units, to measure the ends of the segments that are
+    /// handed over and not kept; `None` with [`Keep::All`] (the stored path
+    /// is measured whole, [`crate::residual::measure_ends`]).
+    units: Option<crate::residual::SignUnits>,
+    /// The largest residual of those segments' ends so far.
+    ends: Option<crate::path::Residual>,
+}
+
+/// The largest residual at the ends of the segments an observed trace of
+/// this scalar type handed over and did not keep (see [`Active::ends`]):
+/// [`crate::residual::measure_ends`] counts them as if they were stored.
+pub(crate) fn emitted_ends<T: Scalar>() -> Option<crate::path::Residual> {
+    ACTIVE.with(|a| {
+        a.borrow()
+            .as_ref()
+            .and_then(|b| b.downcast_ref::<Active<T>>())
+            .and_then(|active| active.ends)
+    })
 }
 
 thread_local! {
@@ -592,6 +612,11 @@ pub(crate) fn record<T: Scalar>(
         breakpoints: breakpoints.len(),
     };
     let control = active.observer.borrow_mut().on_segment(&segment, &progress);
+    if let Some(units) = &active.units {
+        // measured as the stored path's segments are (the same unscaled bits)
+        let r = crate::residual::segment_ends(units, &segment);
+        active.ends = Some(active.ends.map_or(r, |a| a.max(r)));
+    }
     active.breakpoints_at.push(breakpoints.len());
     active.emitted += 1;
     if let Keep::Compact { checkpoint_every } = active.keep {

@@ -533,9 +533,11 @@ impl<T: Scalar> pulp::WithSimd for EndResidualPass<'_, '_, T> {
         bufs.acc.clear();
         bufs.acc.extend((0..n).map(|r| q[r] + lambda * d[r]));
         bufs.big.clear();
+        // the rule of `residual::residual` (tolerance::residual_unit), the same bits
         bufs.big
-            .extend((0..n).map(|r| T::one().max(q[r].abs()).max((lambda * d[r]).abs())));
+            .extend((0..n).map(|r| q[r].abs().max((lambda * d[r]).abs())));
         let (acc, big) = (&mut bufs.acc[..], &mut bufs.big[..]);
+        let mut mz = T::zero();
         for j in 0..n {
             let xj = point.z[j];
             if xj == T::zero() {
@@ -554,14 +556,18 @@ impl<T: Scalar> pulp::WithSimd for EndResidualPass<'_, '_, T> {
                 *a += mij * xj;
                 *s = (*s).max(mij.abs() * xa);
             }
+            mz = col.iter().fold(mz, |a, v| a.max(v.abs()));
         }
+        let unit = crate::tolerance::residual_unit(q, d);
         let mut eq = 0.0f64;
         for r in 0..n {
             let v = acc[r] - point.w[r];
             let scale = big[r].to_f64().max(point.w[r].to_f64().abs());
-            eq = eq.max(v.to_f64().abs() / scale);
+            eq = eq.max(v.to_f64().abs() / scale.max(unit));
         }
-        crate::residual::with_signs(eq, point)
+        let mz = mz.to_f64();
+        let z_unit = if mz > 0.0 { unit / mz } else { unit };
+        crate::residual::signs_in_units(eq, point, z_unit, unit)
     }
 }
 

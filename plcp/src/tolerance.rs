@@ -19,7 +19,7 @@
 //! | refinement | entering columns refined (one step, residual in `Scalar::Wide`); basic values at breakpoints refined | columns: `cond * eps > refine_cond_eps` (default `1e-12`); values: in the working precision while the equation residual `> refine_tol_eps * eps` (default `1e3`, two steps), with wide residuals once `cond * eps >` [`WIDE_REFINE_COND_EPS`] (`1e-9`; on a sparse `M` from `refine_cond_eps`) |
 //! | idle refinement | the block basis pauses refining entering columns (then probes, pauses doubling to 64 solves) | [`REFINE_IDLE_RUN`] (`8`) corrections in a row `<= REFINE_IDLE_EPS * eps * max abs(y)` ([`REFINE_IDLE_EPS`] `= 64`) |
 //! | segment evaluation | [`crate::Segment::eval`] returns a negative `z` or `w` inside its segment as zero | `-v <= abs(slope) 64 eps max(1, abs(L)) + 64 eps abs(v_from)` and `-v > sqrt(eps) max(1, max abs(x))` |
-//! | residuals of points | reported ([`crate::residual::residual`]: start, end, `Path::at`, and every breakpoint for Lemke on a Schur reduction or on request, [`crate::residual::measure_path`]) | equation row `r` relative to `max(1, abs(q_r), abs(L d_r), abs(w_r), max_j abs(M_rj x_j))` |
+//! | residuals of points | reported ([`crate::residual::residual`]: start, end, `Path::at`, and every breakpoint for Lemke on a Schur reduction or on request, [`crate::residual::measure_path`]; the sign parts at both ends of every segment, [`crate::residual::segment_ends`]) | equation row `r` relative to `max(U, abs(q_r), abs(L d_r), abs(w_r), max_j abs(M_rj x_j))`, `U = min(max abs(q), max abs(d))` the data's unit ([`residual_unit`], no absolute floor); feasibility of `w` relative to `max(U, max abs(w))`, of `z` to `max(U / max abs(M_ij), max abs(z))` |
 //! | residual guard | a path that claims success is downgraded to `ill_conditioned`; the trace stops as `ill_conditioned` at a breakpoint whose residual (after refinement) fails it | largest reported residual `> sqrt(eps)` |
 //! | reduction ties | Lemke on the Schur reduction of a mixed problem: the tie tolerance of the reduced path | `tie_tol_eps` times [`reduction_tie_factor`] (`cond(F)`, at least 1, and the product at most `sqrt(eps)`) |
 //! | covering vector | the start phase's covering vector `c` is brought by a power of two to the scale of the right-hand side, so the artificial variable is dimensionless | `c * 2^(e(max abs(q + L0 d)) - e(max c))`, `e` the binary exponent |
@@ -31,6 +31,47 @@
 //! | breakpoint re-intersection | Lemke on the Schur reduction: a breakpoint moves to where the polished segment's leaving variable is zero | only by `<= sqrt(eps) * max(1, abs(L))` |
 
 use crate::scalar::Scalar;
+
+/// The data's unit `U` in the residuals of a point
+/// ([`crate::residual::residual`]): `min(max |q|, max |d|)` over those that
+/// are nonzero. Row `r` of the equation residual is measured against
+/// `max(s_r, U)`, `s_r = max(|q_r|, |L d_r|, |w_r|, max_j |M_rj x_j|)` its
+/// own terms; `w` against `max(U, max |w|)`; `z` against
+/// `max(U / max |M_ij|, max |z|)` (over the columns of nonzero `z`).
+///
+/// It replaces an absolute floor of `1` (issue 14), with which data scaled by
+/// `1e-30`, or an LCP with `q` of `1e-4`, looked accurate whatever the
+/// answer: `U` scales with `(M, q, d)`, so a uniform scaling leaves every
+/// residual unchanged. On the frames (unit loads, capacities of one or more)
+/// it is the floor of `1` it replaces.
+///
+/// Why the smaller of the two, and why a floor at all (measured):
+///
+/// * no floor (each row against its own terms only) raises false alarms on
+///   correct paths: rows whose own terms are all rounding carry the rounding
+///   of the others (`7.7e-14` on the 20-element cantilever at `L = 0`);
+/// * a floor at the whole data's size (`max |q|`, `max(|q|, |L d|)`, the
+///   normwise `max_r s_r`, or Arioli-Demmel-Duff's `max_j |M_rj| max |x|`)
+///   hides in f32 the wrong path of `scenes/stiff/lengths-portal.toml`
+///   (capacities up to `1e6`, unit load: an equation row off by `1.0`, all
+///   its own terms of size one, read as `1e-6`; breakpoints off by 50%,
+///   `tests/stiff.rs`), which `U`, the load's unit there, flags;
+/// * with `U` a warm time step of `frames::timestep` (`q` of size one, `d`
+///   the step's increment, `2.7e-4`) reads its rounding (`3e-18` absolute,
+///   `0.01 eps` of the data, in the rows of the rigid velocities) relative
+///   to the increment: `1e-14`, growing with the velocities' rounding drift
+///   to about `3e-12` over `10^4` steps; far below the residual guard
+///   (`sqrt(eps)`), so no step restarts cold.
+pub fn residual_unit<T: Scalar>(q: faer::ColRef<'_, T>, d: faer::ColRef<'_, T>) -> f64 {
+    let max = |c: faer::ColRef<'_, T>| c.iter().fold(0.0f64, |a, v| a.max(v.to_f64().abs()));
+    let (mq, md) = (max(q), max(d));
+    let u = match (mq > 0.0, md > 0.0) {
+        (true, true) => mq.min(md),
+        (true, false) => mq,
+        _ => md,
+    };
+    u.max(f64::MIN_POSITIVE)
+}
 
 /// With [`crate::Settings::escalate`], a path in `f32`/`f64` that claims an
 /// end (`reached`, a ray) on a basis with `cond * eps` above this is checked

@@ -1267,11 +1267,12 @@ fn wolfe_start_phase_tie_with_its_end() {
 /// The instance on which `f64_idle_free_variable_wolfe_matches_clarabel`
 /// failed once (2026-11-26, an unseeded run): Wolfe's path reported residual
 /// `2.3e-15` (the trace's own, of the basic values on the scaled system) where
-/// its segments, evaluated at their ends on the problem, have `2.5e-12`. The
-/// reported residual should bound what the delivered segments give at their
-/// ends; it does not yet (see the `ignore` reason).
+/// its segments, evaluated at their ends on the problem, have `2.5e-12` (a
+/// feasibility residual). The reported residual bounds what the delivered
+/// segments give at their ends: `residual::measure_ends` measures both ends
+/// of every segment (and a streamed trace those it hands over,
+/// `observe.rs`).
 #[test]
-#[ignore = "the fix (segment ends measured in residual::measure_ends) broke observe.rs: a streamed path (no stored segments) must report the residual bits of the stored one; the streaming side must measure the segment ends too (docs/limits.md)"]
 fn f64_reported_residual_bounds_the_segment_ends() {
     let m = faer::mat![
         [0.0, 0.0, 0.0, -0.0, 0.0, 0.0, -0.0],

@@ -399,7 +399,6 @@ fn scaled_point(point: &plcp::Point<f64>, s: f64) -> plcp::Point<f64> {
 /// and an answer wrong by 10% is flagged (above the residual guard,
 /// `sqrt(eps)`) at every scale.
 #[test]
-#[ignore = "residual floor fix reverted: U = min(max |q|, max |d|) made frames time stepping (tiny d) restart cold, tests/timestep.rs tiny_steps; see docs/limits.md"]
 fn residual_is_relative_to_the_data_at_every_scale() {
     let data = pmatrix20();
     let base = solve(&scaled::<f64>(&data, 1.0));
@@ -443,7 +442,6 @@ fn residual_is_relative_to_the_data_at_every_scale() {
 /// `max |q| / max |M_ij|`: an answer with Siconos error 1 is flagged in
 /// every precision, a right one is not.
 #[test]
-#[ignore = "residual floor fix reverted: U = min(max |q|, max |d|) made frames time stepping (tiny d) restart cold, tests/timestep.rs tiny_steps; see docs/limits.md"]
 fn residual_flags_a_wrong_lcp_answer_with_small_q() {
     fn check<T: Scalar>() {
         let m = Mat::<T>::from_fn(2, 2, |i, j| {
