@@ -2,11 +2,13 @@
 //! the start value while `L` rises (or falls, past a turning point), one
 //! segment per basis, until `lambda_max`, a ray, or a status.
 //!
-//! `trace_steps` is one loop of about 240 lines, over the 150 the house style
+//! `trace_steps` is one loop of about 165 lines, over the 150 the house style
 //! asks for: the driver, its column, the owed residual and the direction of `L`
-//! live in locals that every part of a step (ratio test, refinement, recording,
-//! the long form's moves) reads and updates; cut apart, each piece would take
+//! live in locals that every part of a step (ratio test, recording, the long
+//! form's moves) reads and updates; cut further apart, each piece would take
 //! most of them as arguments, and the order of their updates is the algorithm.
+//! The entering column, its refinement and the owed breakpoint residual are
+//! `entering_column`.
 
 use super::*;
 
@@ -47,95 +49,11 @@ impl<'a, T: Scalar> Engine<'a, T> {
             }
             // the entering column refined inside its solve, where the basis can
             // (the block basis refines on S alone: no extra pass over the matrix)
-            let refine_here = self.refine_columns && self.refine_inside;
-            if refine_here {
-                self.factor.set_refine(true);
-            }
-            // the entering column's wide residual, when a pass for the values computed it
-            // and its correction (solved with the values' first correction)
-            let mut col_correction: Option<Col<T>> = None;
             // the entering column, in the engine's buffer (put back at the
             // end of the step)
             let mut col = Self::take_buf(&mut self.col_buf);
-            match rec.as_deref_mut() {
-                Some(rec) if self.residual_owed => {
-                    let res = if self.refine_wide {
-                        // the wide residuals recompute B x: no working-precision
-                        // product; the first residual of the values and the
-                        // entering column's share one pass over the basic columns
-                        self.column_into(driver, &mut col);
-                        if refine_here {
-                            self.factor.set_refine(false);
-                        }
-                        let first = if self.refine_inside {
-                            None
-                        } else {
-                            // the two corrections are independent: one sweep
-                            // over the factors for both
-                            let (values, column) = self.wide_residual_pair(&self.x, driver, &col);
-                            let (dx, dc) = self.factor.solve2(values, column);
-                            col_correction = Some(dc);
-                            Some(dx)
-                        };
-                        self.refine_values_wide(first)
-                    } else {
-                        let mut a = Self::take_buf(&mut self.a_buf);
-                        let mut bx = Self::take_buf(&mut self.bx_buf);
-                        var_column_into(self.m, &self.d, self.p, driver, &mut a);
-                        self.factor.solve_and_apply_into(
-                            self.m,
-                            &self.d,
-                            self.p,
-                            &self.basis,
-                            &a,
-                            &self.x,
-                            &mut col,
-                            &mut bx,
-                        );
-                        self.a_buf = a;
-                        if refine_here {
-                            self.factor.set_refine(false);
-                        }
-                        let res = self.refine_values(&mut bx);
-                        self.bx_buf = bx;
-                        res
-                    };
-                    if let Some(b) = rec.breakpoints.last_mut() {
-                        b.residual = res;
-                    }
-                    self.residual_owed = false;
-                    // the residual guard of `crate::solve`, applied where the
-                    // evidence appears: a path that continued from a breakpoint
-                    // whose values fail their equations (drift beyond what
-                    // refinement repairs) could end in a wrong secondary ray,
-                    // which that guard does not downgrade
-                    let limit = T::eps().to_f64().sqrt();
-                    let worst = res.worst();
-                    if worst.is_nan() || worst > limit {
-                        return TraceEnd::IllConditioned(format!(
-                            "the basic solution at the breakpoint L = {:e} has residual {worst:.3e} (equation {:.1e}, feasibility {:.1e}, complementarity {:.1e}) above sqrt(eps) = {limit:.1e} in {} after refinement (basis condition estimate up to {:.1e}): the path is not continued; use a higher precision",
-                            self.lambda.to_f64(),
-                            res.equation,
-                            res.feasibility,
-                            res.complementarity,
-                            T::NAME,
-                            self.max_cond
-                        ));
-                    }
-                }
-                _ => self.column_into(driver, &mut col),
-            }
-            if refine_here {
-                self.factor.set_refine(false);
-            }
-            if self.refine_columns {
-                if self.refine_inside {
-                    // refined inside the solve above (unless the basis found
-                    // its refinement idle, see tolerance::REFINE_IDLE_EPS)
-                    self.refinements += usize::from(self.factor.last_solve_refined());
-                } else {
-                    self.refine_column(driver, &mut col, col_correction.take());
-                }
+            if let Err(msg) = self.entering_column(driver, rec.as_deref_mut(), &mut col) {
+                return TraceEnd::IllConditioned(msg);
             }
             let colmax = col_max_abs(&col);
             let rate = match driver {
@@ -281,6 +199,106 @@ impl<'a, T: Scalar> Engine<'a, T> {
             }
             self.col_buf = col;
         }
+    }
+
+    /// The entering column of `driver` into `col`, refined as the settings
+    /// ask; where a breakpoint's residual is owed (`rec`), the values are
+    /// refined in the same pass and the residual recorded. `Err`: the
+    /// breakpoint's residual is above the guard (the path is not continued).
+    fn entering_column(
+        &mut self,
+        driver: Var,
+        rec: Option<&mut Recorder<T>>,
+        col: &mut Col<T>,
+    ) -> Result<(), String> {
+        let refine_here = self.refine_columns && self.refine_inside;
+        if refine_here {
+            self.factor.set_refine(true);
+        }
+        // the entering column's wide residual, when a pass for the values computed it
+        // and its correction (solved with the values' first correction)
+        let mut col_correction: Option<Col<T>> = None;
+        match rec {
+            Some(rec) if self.residual_owed => {
+                let res = if self.refine_wide {
+                    // the wide residuals recompute B x: no working-precision
+                    // product; the first residual of the values and the
+                    // entering column's share one pass over the basic columns
+                    self.column_into(driver, col);
+                    if refine_here {
+                        self.factor.set_refine(false);
+                    }
+                    let first = if self.refine_inside {
+                        None
+                    } else {
+                        // the two corrections are independent: one sweep
+                        // over the factors for both
+                        let (values, column) = self.wide_residual_pair(&self.x, driver, col);
+                        let (dx, dc) = self.factor.solve2(values, column);
+                        col_correction = Some(dc);
+                        Some(dx)
+                    };
+                    self.refine_values_wide(first)
+                } else {
+                    let mut a = Self::take_buf(&mut self.a_buf);
+                    let mut bx = Self::take_buf(&mut self.bx_buf);
+                    var_column_into(self.m, &self.d, self.p, driver, &mut a);
+                    self.factor.solve_and_apply_into(
+                        self.m,
+                        &self.d,
+                        self.p,
+                        &self.basis,
+                        &a,
+                        &self.x,
+                        col,
+                        &mut bx,
+                    );
+                    self.a_buf = a;
+                    if refine_here {
+                        self.factor.set_refine(false);
+                    }
+                    let res = self.refine_values(&mut bx);
+                    self.bx_buf = bx;
+                    res
+                };
+                if let Some(b) = rec.breakpoints.last_mut() {
+                    b.residual = res;
+                }
+                self.residual_owed = false;
+                // the residual guard of `crate::solve`, applied where the
+                // evidence appears: a path that continued from a breakpoint
+                // whose values fail their equations (drift beyond what
+                // refinement repairs) could end in a wrong secondary ray,
+                // which that guard does not downgrade
+                let limit = T::eps().to_f64().sqrt();
+                let worst = res.worst();
+                if worst.is_nan() || worst > limit {
+                    return Err(format!(
+                        "the basic solution at the breakpoint L = {:e} has residual {worst:.3e} (equation {:.1e}, feasibility {:.1e}, complementarity {:.1e}) above sqrt(eps) = {limit:.1e} in {} after refinement (basis condition estimate up to {:.1e}): the path is not continued; use a higher precision",
+                        self.lambda.to_f64(),
+                        res.equation,
+                        res.feasibility,
+                        res.complementarity,
+                        T::NAME,
+                        self.max_cond
+                    ));
+                }
+            }
+            _ => self.column_into(driver, col),
+        }
+        if refine_here {
+            self.factor.set_refine(false);
+        }
+        if self.refine_columns {
+            if self.refine_inside {
+                // refined inside the solve above (unless the basis found
+                // its refinement idle, see tolerance::REFINE_IDLE_EPS)
+                self.refinements += usize::from(self.factor.last_solve_refined());
+            } else {
+                self.refine_column(driver, col, col_correction.take());
+            }
+        }
+        Ok(())
     }
 
     pub(super) fn note_direction(&self, rec: &mut Recorder<T>, sign: i8) {
