@@ -519,6 +519,22 @@ impl<'a> Reader<'a> {
         self.entry(index, from, p.lambda_to, p);
     }
 
+    /// The intervals read so far (the last one may still be extended).
+    pub(crate) fn intervals(&self) -> &[Interval] {
+        &self.intervals
+    }
+
+    /// The breakpoints read so far.
+    pub(crate) fn breakpoints(&self) -> &[EventPoint] {
+        &self.breakpoints
+    }
+
+    /// The end of the last piece read (`None` before the first long one):
+    /// every later breakpoint and interval starts at or above it.
+    pub(crate) fn frontier(&self) -> Option<f64> {
+        self.last_to
+    }
+
     /// The reading of the pieces pushed.
     pub fn finish(mut self) -> Reading {
         if self.last_to.is_none() {

@@ -230,6 +230,12 @@ pub fn default_t_end(history: &History, reading: &Reading, lambda_max: Option<f6
     if let Some(lm) = lambda_max {
         target = target.min(lm);
     }
+    t_end_at(history, target)
+}
+
+/// The time at which `Lambda` reaches `target` (where the history never
+/// does: its plateau's end, as [`default_t_end`]).
+pub(crate) fn t_end_at(history: &History, target: f64) -> f64 {
     match history.time_at(target) {
         Some(t) if t > 0.0 => t,
         _ => match history {

@@ -331,7 +331,15 @@ fn two_passes_give_the_reports_of_the_whole_analysis() {
     };
     for (moments, nodes, sel) in picks {
         let what = format!("{sel:?}");
-        let lean = frames::stream::run(scene.clone(), &options, moments, nodes, None).unwrap();
+        // the default and a list of values are decided before the trace:
+        // one trace; a count or everything need the second
+        let one_pass = matches!(sel.moments, MomentPick::At(_));
+        let (lean, second) = traced(scene.clone(), &options, moments, nodes);
+        assert_eq!(
+            second == 0,
+            one_pass,
+            "{what}: {second} ticks of a second trace"
+        );
         assert!(
             lean.response.nodes.is_some(),
             "{what}: not analysed in two passes"
@@ -353,6 +361,56 @@ fn two_passes_give_the_reports_of_the_whole_analysis() {
             );
             assert!(lean.json_report(&OutputSelection::all()).is_err(), "{what}");
         }
+    }
+}
+
+/// [`frames::stream::run_in_passes`] and how many segments its second
+/// trace told (none: one trace).
+fn traced(
+    scene: Scene,
+    options: &AnalysisOptions,
+    moments: Option<MomentPick>,
+    nodes: Option<NodePick>,
+) -> (Analysis, usize) {
+    let ticks = std::rc::Rc::new(std::cell::Cell::new(0usize));
+    let count = ticks.clone();
+    let second: frames::solve::Watch =
+        std::rc::Rc::new(std::cell::RefCell::new(move |_: &frames::solve::Tick| {
+            count.set(count.get() + 1)
+        }));
+    let a =
+        frames::stream::run_in_passes(scene, options, moments, nodes, None, Some(second)).unwrap();
+    (a, ticks.get())
+}
+
+/// One trace where the end time and the sampled values are known before it
+/// (`t_end` given, inside the traced range), two where the guess fails (an
+/// end time beyond `lambda_max`: the response is cut to where the path was
+/// traced; a last breakpoint below `lambda_max / 1.5`, which sets the default
+/// end time): the reports equal the whole analysis's every time.
+#[test]
+fn one_trace_where_the_guesses_hold_two_where_not() {
+    let (scene, options) = cantilever_scene(SMALL_SCENE + 50);
+    for (t_end, lambda_max, one) in [
+        (Some(7.5), Some(12.0), true),
+        (Some(20.0), Some(12.0), false),
+        (None, Some(100.0), true),
+        // the last breakpoint (the hinge at the tip, near 3 / h) is below
+        // lambda_max / 1.5: the default end time is 1.5 times it
+        (None, Some(2000.0), false),
+    ] {
+        let mut options = options.clone();
+        options.t_end = t_end;
+        options.solve.lambda_max = lambda_max;
+        let whole = Analysis::run(scene.clone(), &options).unwrap();
+        let sel = OutputSelection::default_for(&whole);
+        let (lean, second) = traced(scene.clone(), &options, None, None);
+        let what = format!("t_end {t_end:?}, lambda_max {lambda_max:?}");
+        assert_eq!(second == 0, one, "{what}: {second} ticks of a second trace");
+        assert!(lean.response.nodes.is_some(), "{what}");
+        assert_eq!(lean.to_text(), whole.to_text(), "{what}");
+        let json = |a: &Analysis| serde_json::to_string(&a.json_report(&sel).unwrap()).unwrap();
+        assert_eq!(json(&lean), json(&whole), "{what}");
     }
 }
 

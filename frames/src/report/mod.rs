@@ -27,7 +27,8 @@ mod wording;
 
 pub use json::JsonReport;
 pub use selection::{
-    sample_indices, HingeSets, MomentPick, NodePick, OutputSelection, DEFAULT_SAMPLES, SMALL_SCENE,
+    sample_indices, spread, HingeSets, MomentPick, NodePick, OutputSelection, DEFAULT_SAMPLES,
+    SMALL_SCENE,
 };
 
 use serde_json::{json, Value};

@@ -82,6 +82,21 @@ pub fn sample_indices(len: usize, count: usize) -> Vec<usize> {
     v
 }
 
+/// `count` values evenly spaced from `from` to `to`, both kept (`from`
+/// alone where `to <= from`): the default sampled Lambda values of a large
+/// scene ([`OutputSelection::default_for`]).
+pub fn spread(from: f64, to: f64, count: usize) -> Vec<f64> {
+    if count == 0 {
+        return Vec::new();
+    }
+    if count == 1 || to <= from {
+        return vec![from];
+    }
+    (0..count)
+        .map(|k| from + (to - from) * (k as f64) / ((count - 1) as f64))
+        .collect()
+}
+
 impl OutputSelection {
     /// Everything (the hinge sets in full).
     pub fn all() -> Self {
@@ -94,8 +109,38 @@ impl OutputSelection {
     /// Everything for a small scene (at most [`SMALL_SCENE`] nodes and
     /// breakpoints); otherwise [`DEFAULT_SAMPLES`] Lambda values and nodes.
     /// The hinge sets in full up to [`SMALL_SCENE`] nodes, as changes above.
+    ///
+    /// The sampled Lambda values are decided before the path is known where
+    /// they can be: with `lambda_max` set, the breakpoints nearest
+    /// [`DEFAULT_SAMPLES`] values evenly spaced from the first breakpoint to
+    /// `lambda_max` ([`MomentPick::At`], [`spread`]); without it, an even
+    /// sample over the breakpoints ([`MomentPick::Count`]). A selection
+    /// known once the first breakpoint is lets `frames run` analyse a large
+    /// scene in one trace ([`crate::stream`]); a count needs the number of
+    /// breakpoints, known only at the end.
     pub fn default_for(a: &Analysis) -> Self {
-        Self::default_for_counts(a.scene.frame.nodes.len(), a.reading.breakpoints.len())
+        Self::default_for_path(
+            a.scene.frame.nodes.len(),
+            a.reading.breakpoints.len(),
+            a.reading.breakpoints.first().map(|b| b.lambda),
+            a.options.solve.lambda_max,
+        )
+    }
+    /// [`OutputSelection::default_for`] a scene of `nodes` nodes whose path
+    /// has `bps` breakpoints, the first at `first`, traced up to `lambda_max`.
+    pub fn default_for_path(
+        nodes: usize,
+        bps: usize,
+        first: Option<f64>,
+        lambda_max: Option<f64>,
+    ) -> Self {
+        let mut sel = Self::default_for_counts(nodes, bps);
+        if let (MomentPick::Count(c), Some(first), Some(to)) = (&sel.moments, first, lambda_max) {
+            if first.is_finite() && to.is_finite() {
+                sel.moments = MomentPick::At(spread(first, to, *c));
+            }
+        }
+        sel
     }
     /// [`OutputSelection::default_for`] a scene of `nodes` nodes whose path
     /// has `bps` breakpoints.
