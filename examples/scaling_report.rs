@@ -34,10 +34,6 @@ fn cantilever_toml(n: usize) -> String {
     )
 }
 
-/// Runs `cmd` under `/usr/bin/time -f "%e %M %U"`, stdout to `out`; returns
-/// (seconds, peak resident MB, output bytes, the first line of the output)
-/// and prints the user time and the load average to stderr (wall time on a
-/// shared machine is several times the CPU time).
 /// The `j`-th breakpoint of the lumped cantilever of `n` elements (length 1,
 /// `m = 1` per length lumped `h` at the interior nodes and `h/2` at the tip,
 /// `Mp = 1`, tip load `Lambda`): the static collapse load 1, then (`j >= 1`)
@@ -69,7 +65,12 @@ fn closed_form(n: usize, j: usize) -> f64 {
     n as f64 * num as f64 / den as f64
 }
 
-fn measure(cmd: &[&str], out: &Path) -> Result<(f64, f64, u64, String), String> {
+/// Runs `cmd` under `/usr/bin/time -f "%e %M %U"`, stdout to `out`; returns
+/// (seconds, peak resident MB, output bytes, the first line of the output,
+/// user seconds)
+/// and prints the user time and the load average to stderr (wall time on a
+/// shared machine is several times the CPU time).
+fn measure(cmd: &[&str], out: &Path) -> Result<(f64, f64, u64, String, f64), String> {
     let times = out.with_extension("time");
     let status = Command::new("/usr/bin/time")
         .args(["-f", "%e %M %U", "-o", times.to_str().unwrap()])
@@ -101,6 +102,7 @@ fn measure(cmd: &[&str], out: &Path) -> Result<(f64, f64, u64, String), String> 
         kb / 1024.0,
         bytes,
         text.lines().next().unwrap_or("").to_string(),
+        user,
     ))
 }
 
@@ -196,7 +198,7 @@ fn main() -> Result<(), String> {
         std::fs::create_dir_all(&dir).map_err(|e| e.to_string())?;
         for n in list::<usize>(&args, "--trace", "10000") {
             let out = dir.join(format!("trace{n}.txt"));
-            let (s, mb, _, _) =
+            let (s, mb, _, _, _) =
                 measure(&[me.to_str().unwrap(), "--trace-one", &n.to_string()], &out)?;
             let text = std::fs::read_to_string(&out).map_err(|e| e.to_string())?;
             print!("{text}");
@@ -211,13 +213,13 @@ fn main() -> Result<(), String> {
     let obstacle = target.join("examples/obstacle");
     let dir = std::env::temp_dir().join("plcp-scaling-report");
     std::fs::create_dir_all(&dir).map_err(|e| e.to_string())?;
-    println!("| case | n | wall s | peak resident MB | output MB | status | breakpoints against the closed form |");
-    println!("|---|---|---|---|---|---|---|");
+    println!("| case | n | wall s | user s | peak resident MB | output MB | status | breakpoints against the closed form |");
+    println!("|---|---|---|---|---|---|---|---|");
     for n in cant {
         let scene = dir.join(format!("cantilever{n}.toml"));
         std::fs::write(&scene, cantilever_toml(n)).map_err(|e| e.to_string())?;
         let out = dir.join(format!("cantilever{n}.json"));
-        let (s, mb, bytes, _) = measure(
+        let (s, mb, bytes, _, user) = measure(
             &[
                 frames.to_str().unwrap(),
                 "run",
@@ -244,7 +246,7 @@ fn main() -> Result<(), String> {
             })
             .fold(0.0f64, f64::max);
         println!(
-            "| cantilever `frames run --json --lambda-max 12` | {n} elements | {s:.2} | {mb:.0} | {:.1} | {}, {} pivots | {} breakpoints, worst relative difference {worst:.1e} |",
+            "| cantilever `frames run --json --lambda-max 12` | {n} elements | {s:.2} | {user:.2} | {mb:.0} | {:.1} | {}, {} pivots | {} breakpoints, worst relative difference {worst:.1e} |",
             bytes as f64 / 1e6,
             doc["status"].as_str().unwrap_or("?"),
             doc["solver"]["pivots"],
@@ -254,7 +256,7 @@ fn main() -> Result<(), String> {
     for case in obst {
         let (nx, lmax) = case.split_once(':').unwrap_or((case.as_str(), "1"));
         let out = dir.join(format!("obstacle{nx}.txt"));
-        let (s, mb, _, line) = measure(&[obstacle.to_str().unwrap(), nx, lmax], &out)?;
+        let (s, mb, _, line, user) = measure(&[obstacle.to_str().unwrap(), nx, lmax], &out)?;
         let nx: usize = nx.parse().map_err(|_| format!("bad N {nx}"))?;
         let pivots = line
             .split(", ")
@@ -268,7 +270,7 @@ fn main() -> Result<(), String> {
             .trim_start_matches("status ")
             .to_string();
         println!(
-            "| obstacle N = {nx}, L_max = {lmax} | {} unknowns | {s:.2} | {mb:.0} | - | {status}, {pivots} |",
+            "| obstacle N = {nx}, L_max = {lmax} | {} unknowns | {s:.2} | {user:.2} | {mb:.0} | - | {status}, {pivots} |",
             nx * nx
         );
     }

@@ -757,6 +757,8 @@ struct Single<'a> {
     acc_rows: Vec<Vec<[[f64; 2]; 6]>>,
     /// Per interval read so far, its start; per breakpoint, its interval.
     iv_from: Vec<f64>,
+    /// The plastic intervals read so far.
+    plastic: Vec<usize>,
     bp_interval: Vec<(f64, usize)>,
     /// The last interval of a window.
     cursor: usize,
@@ -844,6 +846,7 @@ impl<'a> Single<'a> {
             accel: std::collections::BTreeMap::new(),
             acc_rows: Vec::new(),
             iv_from: Vec::new(),
+            plastic: Vec::new(),
             bp_interval: Vec::new(),
             cursor: 0,
             best_iv: Vec::new(),
@@ -919,15 +922,15 @@ impl<'a> Single<'a> {
             self.iv_from.push(iv.lambda_from);
             self.knot_at(iv.lambda_from);
         }
-        // per breakpoint, its plastic interval (as response::build zips them)
-        let mut plastic = (0..intervals.len()).filter(|&i| !intervals[i].rigid);
-        let first_bp = self.bp_interval.len();
-        for (d, b) in bps.iter().enumerate() {
-            let i = plastic.next();
-            if d < first_bp {
-                continue;
+        for (i, iv) in intervals.iter().enumerate().skip(first_new) {
+            if !iv.rigid {
+                self.plastic.push(i);
             }
-            match i {
+        }
+        // per breakpoint, its plastic interval (as response::build zips them)
+        let first_bp = self.bp_interval.len();
+        for (d, b) in bps.iter().enumerate().skip(first_bp) {
+            match self.plastic.get(d).copied() {
                 Some(i) => self.bp_interval.push((b.lambda, i)),
                 None => self.failed = true,
             }

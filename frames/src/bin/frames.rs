@@ -269,7 +269,7 @@ fn run(cli: Cli) -> Result<(), FramesError> {
                 ..AnalysisOptions::default()
             };
             progress.message("tracing the path of system (9)");
-            // a large scene without plots or time stepping: in two passes
+            // a large scene without plots or time stepping: in one pass, or two
             // over the path, keeping what the report asks for (memory linear
             // in the structure; frames::stream)
             let large = scene.frame.nodes.len() > frames::report::SMALL_SCENE;
@@ -295,8 +295,8 @@ fn run(cli: Cli) -> Result<(), FramesError> {
                     &options,
                     moments.clone(),
                     nodes.clone(),
-                    watch_with("tracing system (9), pass 1 of 2 (hinge reading)"),
-                    watch_with("tracing system (9), pass 2 of 2 (response, moments)"),
+                    watch_with("tracing system (9) (hinge reading, response)"),
+                    watch_with("tracing system (9) again (response, moments)"),
                 )?
             } else {
                 let watch = watch_with("tracing system (9)");
