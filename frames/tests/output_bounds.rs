@@ -3,7 +3,8 @@
 //! gets everything, and `OutputSelection` asks for more or for specific ones.
 
 use frames::report::{
-    sample_indices, HingeSets, MomentPick, NodePick, OutputSelection, DEFAULT_SAMPLES, SMALL_SCENE,
+    sample_indices, spread, HingeSets, MomentPick, NodePick, OutputSelection, DEFAULT_SAMPLES,
+    SMALL_SCENE,
 };
 use frames::{Analysis, AnalysisOptions, Scene, SolveOptions};
 
@@ -76,6 +77,22 @@ fn sampling_keeps_the_ends_and_the_count() {
     assert_eq!((s[0], s[19]), (0, 999));
     assert!(s.windows(2).all(|w| w[0] < w[1]));
     assert!(sample_indices(7, 0).is_empty());
+    let v = spread(1.0, 12.0, 20);
+    assert_eq!((v.len(), v[0], v[19]), (20, 1.0, 12.0));
+    assert!(v.windows(2).all(|w| w[0] < w[1]));
+    assert_eq!(spread(5.0, 2.0, 20), vec![5.0]);
+    // a large scene's default samples are decided by lambda_max and the
+    // first breakpoint (one trace), a small one's are all, and without
+    // lambda_max a count over the breakpoints
+    let large = OutputSelection::default_for_path(SMALL_SCENE + 1, 7, Some(1.0), Some(12.0));
+    assert_eq!(
+        large.moments,
+        MomentPick::At(spread(1.0, 12.0, DEFAULT_SAMPLES))
+    );
+    let small = OutputSelection::default_for_path(SMALL_SCENE, 7, Some(1.0), Some(12.0));
+    assert_eq!(small.moments, MomentPick::All);
+    let open = OutputSelection::default_for_path(SMALL_SCENE + 1, 7, Some(1.0), None);
+    assert_eq!(open.moments, MomentPick::Count(DEFAULT_SAMPLES));
 }
 
 #[test]
