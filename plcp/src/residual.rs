@@ -216,7 +216,12 @@ impl SignUnits {
         let (p, dim) = (problem.free(), problem.dim());
         let col_max = (p..dim)
             .map(|j| match m {
-                MatrixRef::Dense(m) => m.col(j).iter().fold(0.0f64, |a, v| a.max(v.to_f64().abs())),
+                // in four chains over the contiguous column (the same maximum:
+                // `M` is finite, and rounding to f64 keeps the order)
+                MatrixRef::Dense(m) => match m.col(j).try_as_col_major() {
+                    Some(c) => crate::pivoting::max_abs(c.as_slice()).to_f64(),
+                    None => m.col(j).iter().fold(0.0f64, |a, v| a.max(v.to_f64().abs())),
+                },
                 MatrixRef::Sparse(s) => s
                     .col(j)
                     .1
@@ -295,9 +300,8 @@ impl SignUnits {
                 z = rule.z(z, zf[i], dz[i]);
                 w = rule.w(w, wf[i], dw[i]);
             }
-            if z != T::zero() {
-                mz = mz.max(col_max[i]);
-            }
+            // (a select rather than a branch on the sign pattern; `mz >= 0`)
+            mz = mz.max(if z != T::zero() { col_max[i] } else { 0.0 });
             let (zi, wi) = (z.to_f64(), w.to_f64());
             az = az.max(zi.abs());
             aw = aw.max(wi.abs());

@@ -159,7 +159,7 @@ type WideAccumulators<T> = (Vec<<T as Scalar>::Wide>, Vec<<T as Scalar>::Wide>);
 /// `max_i |v_i|` (zero for an empty slice) in four independent chains: a
 /// single chain of compares waits on each one, and the engine takes this
 /// maximum of vectors of length `p + n` several times per pivot.
-fn max_abs<T: Scalar>(v: &[T]) -> T {
+pub(crate) fn max_abs<T: Scalar>(v: &[T]) -> T {
     let mut m = [T::zero(); 4];
     let mut chunks = v.chunks_exact(4);
     for c in &mut chunks {
