@@ -353,10 +353,8 @@ impl<T: Scalar> BasisFactor<T> for BlockInverse<T> {
                 }
                 None => {
                     let b = self.bpos.len();
-                    let a = var_column(m, d, p, *v);
-                    for i in 0..dim {
-                        self.g[(i, b)] = a[i];
-                    }
+                    // written in place (no column allocated per basic column)
+                    var_column_slice(m, d, p, *v, column_slice(self.g.as_mut(), b));
                     self.bpos.push(r);
                     self.slots[r] = Slot::Matrix(b);
                 }
