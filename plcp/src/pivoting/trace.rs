@@ -99,7 +99,8 @@ impl<'a, T: Scalar> Engine<'a, T> {
                         }
                     }
                     for (x, &c) in col_slice_mut(&mut self.x).iter_mut().zip(col_slice(&col)) {
-                        *x = *x - theta_end * c;
+                        let v = *x - theta_end * c;
+                        *x = v;
                     }
                     self.lambda = end;
                     if let Some(l) = self.row_of(Var::Lambda) {
@@ -148,7 +149,8 @@ impl<'a, T: Scalar> Engine<'a, T> {
                 }
             }
             for (x, &c) in col_slice_mut(&mut self.x).iter_mut().zip(col_slice(&col)) {
-                *x = *x - theta * c;
+                let v = *x - theta * c;
+                *x = v;
             }
             self.lambda = lambda_to;
             if let Some(l) = self.row_of(Var::Lambda) {
