@@ -202,28 +202,14 @@ impl<T: Scalar> Segment<T> {
         let mut z = affine(&self.z_from, &self.dz, dl);
         let mut w = affine(&self.w_from, &self.dw, dl);
         if self.contains(lambda) {
-            // what rounding can do: the slope times the uncertainty of `L`
-            // (64 eps relative), plus 64 eps of the stored value
-            let e64 = T::from_f64(64.0) * T::eps();
-            let dl_err = e64
-                * T::one()
-                    .max(lambda.abs())
-                    .max(self.lambda_from.abs())
-                    .max(self.lambda_to.abs());
-            // only violations the residual check would see (beyond sqrt(eps) of
-            // the vector's scale, as in `residual::residual`): smaller ones cost
-            // less than the equation error a clamp would bring
-            let visible =
-                |x: &Col<T>| T::eps().sqrt() * x.iter().fold(T::one(), |m, v| m.max(v.abs()));
-            let (vz, vw) = (visible(&z), visible(&w));
-            let clamp = |v: &mut T, from: T, slope: T, visible: T| {
-                if -*v > visible && -*v <= slope.abs() * dl_err + e64 * from.abs() {
-                    *v = T::zero();
-                }
-            };
+            let rule = self.clamp_rule(
+                lambda,
+                visible_max(z.iter().copied()),
+                visible_max(w.iter().copied()),
+            );
             for i in 0..z.nrows() {
-                clamp(&mut z[i], self.z_from[i], self.dz[i], vz);
-                clamp(&mut w[i], self.w_from[i], self.dw[i], vw);
+                z[i] = rule.z(z[i], self.z_from[i], self.dz[i]);
+                w[i] = rule.w(w[i], self.w_from[i], self.dw[i]);
             }
         }
         Point {
@@ -231,6 +217,29 @@ impl<T: Scalar> Segment<T> {
             z,
             w,
             u: affine(&self.u_from, &self.du, dl),
+        }
+    }
+
+    /// The clamp of [`Segment::eval`] at `lambda` (inside the segment), given
+    /// the unclamped vectors' [`visible_max`]: one rule shared with the
+    /// allocation-free sign measure of [`crate::residual::segment_ends`].
+    pub(crate) fn clamp_rule(&self, lambda: T, z_max: T, w_max: T) -> ClampRule<T> {
+        // what rounding can do: the slope times the uncertainty of `L`
+        // (64 eps relative), plus 64 eps of the stored value
+        let e64 = T::from_f64(64.0) * T::eps();
+        let dl_err = e64
+            * T::one()
+                .max(lambda.abs())
+                .max(self.lambda_from.abs())
+                .max(self.lambda_to.abs());
+        // only violations the residual check would see (beyond sqrt(eps) of
+        // the vector's scale, as in `residual::residual`): smaller ones cost
+        // less than the equation error a clamp would bring
+        ClampRule {
+            e64,
+            dl_err,
+            vz: T::eps().sqrt() * z_max,
+            vw: T::eps().sqrt() * w_max,
         }
     }
     /// Base of `z` at `L = 0`: `z(L) = z0 + L dz`.
@@ -244,6 +253,43 @@ impl<T: Scalar> Segment<T> {
     /// Base of `u` at `L = 0`.
     pub fn u0(&self) -> Col<T> {
         affine(&self.u_from, &self.du, -self.lambda_from)
+    }
+}
+
+/// `max(1, max_i |v_i|)`, folded in index order (the scale below which
+/// [`Segment::eval`] leaves a negative value alone).
+pub(crate) fn visible_max<T: Scalar>(v: impl Iterator<Item = T>) -> T {
+    v.fold(T::one(), |m, x| m.max(x.abs()))
+}
+
+/// What [`Segment::eval`] sets to zero at one parameter value: a negative
+/// value beyond `sqrt(eps)` of its vector's scale (`vz`, `vw`) and within
+/// what rounding can do (`|slope| dl_err + e64 |from|`).
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct ClampRule<T: Scalar> {
+    e64: T,
+    dl_err: T,
+    vz: T,
+    vw: T,
+}
+
+impl<T: Scalar> ClampRule<T> {
+    fn clamp(&self, v: T, from: T, slope: T, visible: T) -> T {
+        if -v > visible && -v <= slope.abs() * self.dl_err + self.e64 * from.abs() {
+            T::zero()
+        } else {
+            v
+        }
+    }
+    /// An entry of `z` (value `v`, stored `from` and slope).
+    #[inline]
+    pub(crate) fn z(&self, v: T, from: T, slope: T) -> T {
+        self.clamp(v, from, slope, self.vz)
+    }
+    /// An entry of `w`.
+    #[inline]
+    pub(crate) fn w(&self, v: T, from: T, slope: T) -> T {
+        self.clamp(v, from, slope, self.vw)
     }
 }
 

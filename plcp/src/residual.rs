@@ -1,7 +1,7 @@
 //! Residuals of a point against a problem: equation, feasibility, complementarity.
 
 use crate::matrix::MatrixRef;
-use crate::path::{Path, Point, Residual, Segment};
+use crate::path::{visible_max, Path, Point, Residual, Segment};
 use crate::problem::Plcp;
 use crate::scalar::Scalar;
 use crate::tolerance::residual_unit;
@@ -216,7 +216,12 @@ impl SignUnits {
         let (p, dim) = (problem.free(), problem.dim());
         let col_max = (p..dim)
             .map(|j| match m {
-                MatrixRef::Dense(m) => m.col(j).iter().fold(0.0f64, |a, v| a.max(v.to_f64().abs())),
+                // in four chains over the contiguous column (the same maximum:
+                // `M` is finite, and rounding to f64 keeps the order)
+                MatrixRef::Dense(m) => match m.col(j).try_as_col_major() {
+                    Some(c) => crate::pivoting::max_abs(c.as_slice()).to_f64(),
+                    None => m.col(j).iter().fold(0.0f64, |a, v| a.max(v.to_f64().abs())),
+                },
                 MatrixRef::Sparse(s) => s
                     .col(j)
                     .1
@@ -242,6 +247,14 @@ impl SignUnits {
     }
 }
 
+/// The entries of an owned (contiguous) column.
+fn slice<T: Scalar>(c: &faer::Col<T>) -> &[T] {
+    c.as_ref()
+        .try_as_col_major()
+        .expect("an owned column is contiguous")
+        .as_slice()
+}
+
 /// The sign parts (feasibility, complementarity) of a segment at its two
 /// ends (the end only if the segment is bounded): what a delivered segment
 /// gives where it meets the next, `O(p + n)`. The one measure of a segment,
@@ -249,11 +262,61 @@ impl SignUnits {
 /// trace hands to its observer and drops ([`crate::solve_observed`]): the
 /// same bits either way.
 pub fn segment_ends<T: Scalar>(units: &SignUnits, seg: &Segment<T>) -> Residual {
-    let mut r = units.signs(&seg.eval(seg.lambda_from));
+    let mut r = units.signs_on(seg, seg.lambda_from);
     if !seg.unbounded && seg.lambda_to.is_finite() {
-        r = r.max(units.signs(&seg.eval(seg.lambda_to)));
+        r = r.max(units.signs_on(seg, seg.lambda_to));
     }
     r
+}
+
+impl SignUnits {
+    /// `self.signs(&seg.eval(lambda))` without the point: two passes over the
+    /// segment's columns (the clamp's scale, then the values with the sign
+    /// measure), no allocation. The same operations on every entry, so the
+    /// same bits: a maximum does not depend on where it starts as long as
+    /// the start is below every entry (`sz = max(z_unit, max |z_i|)` folded
+    /// as `max(z_unit, max(0, max |z_i|))`).
+    fn signs_on<T: Scalar>(&self, seg: &Segment<T>, lambda: T) -> Residual {
+        let dl = lambda - seg.lambda_from;
+        let (zf, dz) = (slice(&seg.z_from), slice(&seg.dz));
+        let (wf, dw) = (slice(&seg.w_from), slice(&seg.dw));
+        let n = zf.len();
+        let (dz, wf, dw, col_max) = (&dz[..n], &wf[..n], &dw[..n], &self.col_max[..n]);
+        let at = |f: &[T], s: &[T]| {
+            let it = f.iter().zip(s).map(move |(&f, &s)| f + s * dl);
+            visible_max(it)
+        };
+        // the clamp needs `-v > sqrt(eps) max(1, max |v|)`: with no entry
+        // below `-sqrt(eps)` it changes nothing, and its scale is not needed
+        let floor = -T::eps().sqrt();
+        let below = |f: &[T], s: &[T]| f.iter().zip(s).any(|(&f, &s)| f + s * dl < floor);
+        let rule = (seg.contains(lambda) && (below(zf, dz) || below(wf, dw)))
+            .then(|| seg.clamp_rule(lambda, at(zf, dz), at(wf, dw)));
+        let (mut mz, mut az, mut aw) = (0.0f64, 0.0f64, 0.0f64);
+        let (mut zmin, mut wmin, mut prod) = (0.0f64, 0.0f64, 0.0f64);
+        for i in 0..n {
+            let (mut z, mut w) = (zf[i] + dz[i] * dl, wf[i] + dw[i] * dl);
+            if let Some(rule) = &rule {
+                z = rule.z(z, zf[i], dz[i]);
+                w = rule.w(w, wf[i], dw[i]);
+            }
+            // (a select rather than a branch on the sign pattern; `mz >= 0`)
+            mz = mz.max(if z != T::zero() { col_max[i] } else { 0.0 });
+            let (zi, wi) = (z.to_f64(), w.to_f64());
+            az = az.max(zi.abs());
+            aw = aw.max(wi.abs());
+            zmin = zmin.min(zi);
+            wmin = wmin.min(wi);
+            prod = prod.max((zi * wi).abs());
+        }
+        let z_unit = if mz > 0.0 { self.unit / mz } else { self.unit };
+        let (sz, sw) = (z_unit.max(az), self.unit.max(aw));
+        Residual {
+            equation: 0.0,
+            feasibility: (-zmin / sz).max(-wmin / sw).max(0.0),
+            complementarity: prod / (sz * sw),
+        }
+    }
 }
 
 /// Measures the path's start and end point on `problem` (all three parts)
@@ -291,4 +354,79 @@ pub fn measure_ends<T: Scalar>(problem: &Plcp<T>, path: &mut Path<T>) {
         worst = worst.max(residual(problem, &path.end));
     }
     path.info.residual = worst;
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use faer::{col, mat, Col};
+
+    /// The allocation-free sign measure of a segment's ends gives the bits of
+    /// measuring the evaluated points, clamped or not.
+    #[test]
+    fn segment_ends_match_the_evaluated_points() {
+        let m = mat![[2.0, 1.0, 0.0], [1.0, 3.0, 0.5], [0.0, 0.5, 4.0]];
+        let problem = Plcp::new(
+            m.as_ref(),
+            col![1.0, 0.5, 2.0].as_ref(),
+            col![-1.0, -0.25, 0.0].as_ref(),
+        )
+        .expect("a valid problem");
+        let units = SignUnits::new(&problem);
+        let seg = |from: Col<f64>, dz: Col<f64>, w: Col<f64>, dw: Col<f64>, l0, l1| Segment {
+            lambda_from: l0,
+            lambda_to: l1,
+            unbounded: false,
+            basis: vec![],
+            z_from: from,
+            dz,
+            w_from: w,
+            dw,
+            u_from: Col::zeros(0),
+            du: Col::zeros(0),
+        };
+        // z_0 ends at -1e-6 through a slope of -1e10: within rounding, clamped
+        let l1 = (1.0 + 1e-6) / 1e10;
+        let clamped = seg(
+            col![1.0, 0.0, 2.0],
+            col![-1e10, 0.0, 1.0],
+            col![0.0, 3.0, 0.0],
+            col![1.0, -2.0, 0.0],
+            0.0,
+            l1,
+        );
+        assert_eq!(clamped.eval(l1).z[0], 0.0, "the case clamps");
+        let plain = seg(
+            col![0.5, 0.0, 1.5],
+            col![-0.25, 0.0, 0.75],
+            col![0.0, 1.25, 0.0],
+            col![0.5, -0.125, 0.0],
+            0.25,
+            1.75,
+        );
+        // past its end a value goes negative and is not clamped
+        let past = seg(
+            col![0.5, 0.0, 1.5],
+            col![-1.0, 0.0, 0.75],
+            col![0.0, 1.25, 0.0],
+            col![0.5, -0.125, 0.0],
+            0.0,
+            1.0,
+        );
+        for s in [&clamped, &plain, &past] {
+            let mut old = units.signs(&s.eval(s.lambda_from));
+            old = old.max(units.signs(&s.eval(s.lambda_to)));
+            let new = segment_ends(&units, s);
+            assert_eq!(old.feasibility.to_bits(), new.feasibility.to_bits());
+            assert_eq!(old.complementarity.to_bits(), new.complementarity.to_bits());
+            assert_eq!(new.equation, 0.0);
+            for l in [0.0, 0.5, 2.0, -1.0] {
+                let a = units.signs(&s.eval(l));
+                let b = units.signs_on(s, l);
+                assert_eq!(a.feasibility.to_bits(), b.feasibility.to_bits());
+                assert_eq!(a.complementarity.to_bits(), b.complementarity.to_bits());
+            }
+        }
+        assert!(units.signs_on(&past, 2.0).feasibility > 0.0);
+    }
 }

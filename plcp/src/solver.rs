@@ -477,6 +477,12 @@ struct EndResidual<T: Scalar> {
     acc: Vec<T>,
     big: Vec<T>,
     colbuf: Vec<T>,
+    /// `max_i |M_ij|` of each column `j` (`M` is the solver's, fixed), found
+    /// the first time `z_j` is nonzero (`None` before): the largest `|M_ij|`
+    /// over the columns of nonzero `z` is the largest of these (a maximum
+    /// does not depend on the order, and `M` is finite), without the second
+    /// pass over those columns each step.
+    colmax: Vec<Option<T>>,
 }
 
 impl<T: Scalar> Default for EndResidual<T> {
@@ -485,6 +491,7 @@ impl<T: Scalar> Default for EndResidual<T> {
             acc: Vec::new(),
             big: Vec::new(),
             colbuf: Vec::new(),
+            colmax: Vec::new(),
         }
     }
 }
@@ -536,6 +543,10 @@ impl<T: Scalar> pulp::WithSimd for EndResidualPass<'_, '_, T> {
         // the rule of `residual::residual` (tolerance::residual_unit), the same bits
         bufs.big
             .extend((0..n).map(|r| q[r].abs().max((lambda * d[r]).abs())));
+        if bufs.colmax.len() != n {
+            bufs.colmax.clear();
+            bufs.colmax.resize(n, None);
+        }
         let (acc, big) = (&mut bufs.acc[..], &mut bufs.big[..]);
         let mut mz = T::zero();
         for j in 0..n {
@@ -556,7 +567,9 @@ impl<T: Scalar> pulp::WithSimd for EndResidualPass<'_, '_, T> {
                 *a += mij * xj;
                 *s = (*s).max(mij.abs() * xa);
             }
-            mz = col.iter().fold(mz, |a, v| a.max(v.abs()));
+            let cm = *bufs.colmax[j]
+                .get_or_insert_with(|| col.iter().fold(T::zero(), |a, v| a.max(v.abs())));
+            mz = mz.max(cm);
         }
         let unit = crate::tolerance::residual_unit(q, d);
         let mut eq = 0.0f64;

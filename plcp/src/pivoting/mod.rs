@@ -159,7 +159,7 @@ type WideAccumulators<T> = (Vec<<T as Scalar>::Wide>, Vec<<T as Scalar>::Wide>);
 /// `max_i |v_i|` (zero for an empty slice) in four independent chains: a
 /// single chain of compares waits on each one, and the engine takes this
 /// maximum of vectors of length `p + n` several times per pivot.
-fn max_abs<T: Scalar>(v: &[T]) -> T {
+pub(crate) fn max_abs<T: Scalar>(v: &[T]) -> T {
     let mut m = [T::zero(); 4];
     let mut chunks = v.chunks_exact(4);
     for c in &mut chunks {
@@ -485,16 +485,28 @@ impl<'a, T: Scalar> Engine<'a, T> {
         }
     }
 
-    /// Values of `(z, w, u)` now, with `driver` at `theta`.
+    /// Values of `(z, w, u)` now, with `driver` at `theta` ([`Self::point_into`]
+    /// on new zero columns, without filling them with zeros again).
     pub(crate) fn point(&self, driver: Option<(Var, T)>) -> Point<T> {
-        let mut pt = Point {
-            lambda: self.lambda,
-            z: Col::zeros(self.n),
-            w: Col::zeros(self.n),
-            u: Col::zeros(self.p),
+        let (mut z, mut w, mut u) = (Col::zeros(self.n), Col::zeros(self.n), Col::zeros(self.p));
+        let mut set = |v: Var, val: T| match v {
+            Var::W(i) => w[i] = val,
+            Var::Z(i) => z[i] = val,
+            Var::U(j) => u[j] = val,
+            _ => {}
         };
-        self.point_into(driver, &mut pt);
-        pt
+        for (r, v) in self.basis.iter().enumerate() {
+            set(*v, self.x[r]);
+        }
+        if let Some((v, t)) = driver {
+            set(v, t);
+        }
+        Point {
+            lambda: self.lambda,
+            z,
+            w,
+            u,
+        }
     }
 
     /// Slopes in `L` of `(z, w, u)` along a step of the driver with column `col` and `L`-rate `rate`.

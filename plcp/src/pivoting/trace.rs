@@ -69,7 +69,11 @@ impl<'a, T: Scalar> Engine<'a, T> {
             let rate_tol = self.noise * colmax.max(T::one());
             let rising = rate > rate_tol;
             let moving = rate.abs() > rate_tol;
-            if !(0..self.dim).all(|i| col[i].is_finite() && self.x[i].is_finite()) {
+            if !col_slice(&col)
+                .iter()
+                .zip(col_slice(&self.x))
+                .all(|(c, x)| c.is_finite() && x.is_finite())
+            {
                 return TraceEnd::IllConditioned(format!(
                     "non-finite values at L = {:e} (overflow in the working precision {})",
                     self.lambda.to_f64(),
@@ -94,9 +98,9 @@ impl<'a, T: Scalar> Engine<'a, T> {
                             self.record_segment(rec, driver, &col, rate, end, false);
                         }
                     }
-                    for r in 0..self.dim {
-                        let v = self.x[r] - theta_end * col[r];
-                        self.x[r] = v;
+                    for (x, &c) in col_slice_mut(&mut self.x).iter_mut().zip(col_slice(&col)) {
+                        let v = *x - theta_end * c;
+                        *x = v;
                     }
                     self.lambda = end;
                     if let Some(l) = self.row_of(Var::Lambda) {
@@ -144,9 +148,9 @@ impl<'a, T: Scalar> Engine<'a, T> {
                     self.record_segment(rec, driver, &col, rate, lambda_to, false);
                 }
             }
-            for i in 0..self.dim {
-                let v = self.x[i] - theta * col[i];
-                self.x[i] = v;
+            for (x, &c) in col_slice_mut(&mut self.x).iter_mut().zip(col_slice(&col)) {
+                let v = *x - theta * c;
+                *x = v;
             }
             self.lambda = lambda_to;
             if let Some(l) = self.row_of(Var::Lambda) {

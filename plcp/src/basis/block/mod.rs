@@ -9,6 +9,30 @@ mod tests;
 
 use pending::{column_slice, dot_slice, FlushPass, Pending};
 
+/// The entries of an owned column.
+fn slice_of<T: Scalar>(c: &Col<T>) -> &[T] {
+    c.as_ref()
+        .try_as_col_major()
+        .expect("an owned column is contiguous")
+        .as_slice()
+}
+
+/// The entries of an owned column, mutable.
+fn slice_mut_of<T: Scalar>(c: &mut Col<T>) -> &mut [T] {
+    c.as_mut()
+        .try_as_col_major_mut()
+        .expect("an owned column is contiguous")
+        .as_slice_mut()
+}
+
+/// Column `j` of a column-major matrix view.
+fn col_of<T: Scalar>(m: MatRef<'_, T>, j: usize) -> &[T] {
+    m.col(j)
+        .try_as_col_major()
+        .expect("an owned matrix is column-major")
+        .as_slice()
+}
+
 /// Where a basis position lives in the block representation.
 #[derive(Clone, Copy, Debug, PartialEq)]
 enum Slot {
@@ -353,10 +377,8 @@ impl<T: Scalar> BasisFactor<T> for BlockInverse<T> {
                 }
                 None => {
                     let b = self.bpos.len();
-                    let a = var_column(m, d, p, *v);
-                    for i in 0..dim {
-                        self.g[(i, b)] = a[i];
-                    }
+                    // written in place (no column allocated per basic column)
+                    var_column_slice(m, d, p, *v, column_slice(self.g.as_mut(), b));
                     self.bpos.push(r);
                     self.slots[r] = Slot::Matrix(b);
                 }
@@ -503,18 +525,19 @@ impl<T: Scalar> BasisFactor<T> for BlockInverse<T> {
                 *out = Col::zeros(dim);
             }
         }
-        for i in 0..dim {
-            bx[i] = prod[(i, 1)];
-        }
-        for (r, slot) in self.slots.iter().enumerate() {
-            sol[r] = match *slot {
-                Slot::Matrix(b) => ym[b],
-                Slot::Identity(i) => a[i] - prod[(i, 0)],
-            };
-        }
-        for (r, slot) in self.slots.iter().enumerate() {
-            if let Slot::Identity(i) = slot {
-                bx[*i] += x[r];
+        // over slices (the same operations without faer's index checks:
+        // three passes of length `dim` a pivot)
+        let (gy, gx) = (col_of(prod.as_ref(), 0), col_of(prod.as_ref(), 1));
+        let (a, x, ym) = (slice_of(a), slice_of(x), slice_of(&ym));
+        let (sol, bx) = (slice_mut_of(sol), slice_mut_of(bx));
+        bx.copy_from_slice(&gx[..dim]);
+        for ((s, slot), &xr) in sol.iter_mut().zip(&self.slots).zip(x) {
+            match *slot {
+                Slot::Matrix(b) => *s = ym[b],
+                Slot::Identity(i) => {
+                    *s = a[i] - gy[i];
+                    bx[i] += xr;
+                }
             }
         }
     }
