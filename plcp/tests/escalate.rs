@@ -410,3 +410,59 @@ fn certificate_drives_the_chain_f64_fx128_exact_to_reached() {
     let z = path.at(5.0).unwrap().z;
     assert!((z[1] - 1.0).abs() <= 1e-12, "z_1 = 1 beyond L = 2.5: {z:?}");
 }
+
+/// The same chain from the command line: `plcp solve --certify --escalate`
+/// reports `reached` with a certificate and `segment_precisions` f64, f128,
+/// exact; `--certify` alone reports `ill_conditioned`.
+#[cfg(feature = "cli")]
+#[test]
+fn the_command_line_runs_the_chain() {
+    use serde_json::{json, Value};
+    let problem = f64_and_fx128_both_wrong();
+    let n = problem.n();
+    let m = problem.m();
+    let rows: Vec<Vec<f64>> = (0..n)
+        .map(|i| (0..n).map(|j| m[(i, j)]).collect())
+        .collect();
+    let col = |c: faer::ColRef<'_, f64>| (0..n).map(|i| c[i]).collect::<Vec<f64>>();
+    let text = json!({
+        "M": rows,
+        "q": col(problem.q()),
+        "d": col(problem.d()),
+        "lambda_max": 6.0,
+    })
+    .to_string();
+    let file = std::env::temp_dir().join(format!("plcp-chain-{}.json", std::process::id()));
+    std::fs::write(&file, text).unwrap();
+    let run = |extra: &[&str]| -> Value {
+        let out = std::process::Command::new(env!("CARGO_BIN_EXE_plcp"))
+            .arg("solve")
+            .arg(&file)
+            .args(["--certify", "--quiet"])
+            .args(extra)
+            .output()
+            .expect("run plcp");
+        assert_eq!(
+            out.status.code(),
+            Some(0),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        serde_json::from_slice(&out.stdout).expect("one JSON object")
+    };
+    let refused = run(&[]);
+    let chained = run(&["--escalate"]);
+    let _ = std::fs::remove_file(&file);
+    assert_eq!(refused["status"], "ill_conditioned", "{refused}");
+    assert_eq!(chained["status"], "reached", "{chained}");
+    assert_eq!(chained["certificate"]["certified"], true, "{chained}");
+    let precs: Vec<&str> = chained["segment_precisions"]
+        .as_array()
+        .expect("segment_precisions")
+        .iter()
+        .map(|v| v.as_str().unwrap())
+        .collect();
+    let mut order = precs.clone();
+    order.dedup();
+    assert_eq!(order, ["f64", "f128", "exact"], "{precs:?}");
+}
