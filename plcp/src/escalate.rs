@@ -760,10 +760,12 @@ pub(crate) fn certify_escalating<T: Scalar>(
             fail.segment, fail.reason
         );
         // the segments before k are certified: restart in the one before it
-        let start = match k {
+        // (no warm restart on a path with turning points, nor past a
+        // breakpoint whose residual exceeded sqrt(eps): [`restart_segment`])
+        let start = restart_segment(path).and_then(|k0| match k {
             0 => Err(format!("{why}; no certified segment before it")),
-            _ => Ok(k - 1),
-        };
+            _ => Ok((k - 1).min(k0)),
+        });
         if produced == T::NAME && T::NAME != <fx128 as Scalar>::NAME {
             let reason = format!("{} in {}: {why}", path.status.as_str(), T::NAME);
             fx128_from(problem, settings, path, start, reason);
