@@ -1317,6 +1317,10 @@ fn the_rotated_3d_run_is_rejected_at_a_rounding_level_slack() {
     };
     let a = Analysis::run(scene, &options).unwrap();
     let c = a.solution.info.certificate.as_ref().expect("a certificate");
+    println!("{}: {}", a.solution.status.as_str(), a.solution.message);
+    if let Some(e) = &a.solution.info.escalation {
+        println!("{:?} from {}", e.segment_precisions, e.lambda);
+    }
     let Some(f) = &c.failure else {
         assert!(a.solution.status.is_success());
         return;

@@ -254,8 +254,6 @@ pub(crate) fn continue_in_fx128<T: Scalar>(
     if !needs_fx128(path) {
         return;
     }
-    let timer = std::time::Instant::now();
-    let (p, n) = (problem.free(), problem.n());
     let reason = if path.status == Status::IllConditioned {
         format!("{} in {}: {}", path.status.as_str(), T::NAME, path.message)
     } else {
@@ -268,6 +266,21 @@ pub(crate) fn continue_in_fx128<T: Scalar>(
             crate::tolerance::ESCALATE_COND_EPS
         )
     };
+    fx128_from(problem, settings, path, restart_segment(path), reason);
+}
+
+/// The continuation in `fx128` from segment `start` (tried `1, 2, 4, ...`
+/// segments back, see [`restart_candidates`]), or re-solved from `lambda0`
+/// if `start` is an `Err` or no candidate is accepted; `reason` says why.
+fn fx128_from<T: Scalar>(
+    problem: &Plcp<T>,
+    settings: &Settings<T>,
+    path: &mut Path<T>,
+    start: Result<usize, String>,
+    reason: String,
+) {
+    let timer = std::time::Instant::now();
+    let (p, n) = (problem.free(), problem.n());
     let wide = problem.cast::<fx128>();
     // a warm continuation from segment k, else a whole re-solve
     let mut escalation = Escalation {
@@ -321,7 +334,7 @@ pub(crate) fn continue_in_fx128<T: Scalar>(
     // precision already erred (its start is where its basis was first formed):
     // fx128 checks each basis, and a rejected one sends the restart one segment
     // back, a few times at most
-    let warm = restart_segment(path).and_then(|k0| {
+    let warm = start.and_then(|k0| {
         let mut why = String::new();
         for k in restart_candidates(k0) {
             let basis = match warm_basis_of(&path.segments[k], path, settings.method, p, n) {
@@ -478,6 +491,18 @@ pub(crate) fn continue_exactly<T: Scalar>(
     if path.status != Status::IllConditioned {
         return;
     }
+    exact_from(problem, settings, path, restart_segment(path));
+}
+
+/// The exact continuation from segment `start` (tried `1, 2, 4, ...`
+/// segments back), or traced exactly from `lambda0` if `start` is an `Err`
+/// or no candidate is accepted.
+fn exact_from<T: Scalar>(
+    problem: &Plcp<T>,
+    settings: &Settings<T>,
+    path: &mut Path<T>,
+    start: Result<usize, String>,
+) {
     let timer = std::time::Instant::now();
     let mut esc = exact_escalation_of(path);
     let dim = problem.dim();
@@ -489,7 +514,7 @@ pub(crate) fn continue_exactly<T: Scalar>(
         path.info.escalation = Some(esc);
         return;
     }
-    let warm = restart_segment(path).and_then(|k0| {
+    let warm = start.and_then(|k0| {
         let mut why = String::new();
         for k in restart_candidates(k0.min(path.segments.len().saturating_sub(1))) {
             match exact_attempt(problem, settings, path, k) {
@@ -620,7 +645,7 @@ fn splice_exact<T: Scalar>(
         "continued in exact arithmetic from L = {:e} ({} segments kept) after {}: the exact run ended {}. {}",
         from.to_f64(),
         k,
-        path.message,
+        path.message.trim_end_matches('.'),
         r.status.as_str(),
         r.message
     )
@@ -683,4 +708,87 @@ fn exact_tail_in<T: Scalar>(
             path.lambda_reached = to_t(l);
         }
     }
+}
+
+/// The precision that produced segment `k` of `path` (its escalation record,
+/// else the working precision).
+fn segment_precision<T: Scalar>(path: &Path<T>, k: usize) -> &'static str {
+    path.info
+        .escalation
+        .as_ref()
+        .and_then(|e| e.segment_precisions.get(k).copied())
+        .unwrap_or(T::NAME)
+}
+
+/// Certifies `path` ([`crate::exact::certify`]) and, with
+/// [`Settings::escalate`], lets the certificate drive the escalation: a
+/// segment it rejects that `T` produced is traced again in `fx128`, one that
+/// `fx128` produced (with [`Settings::escalate_exact`]) exactly, each warm
+/// from the certified segment before it (tried `1, 2, 4, ...` segments back,
+/// else from `lambda0`), and the new path is certified again. Returns the last
+/// certificate.
+///
+/// Why: a float path can be wrong while nothing in it looks ill-conditioned.
+/// Two events within the tie window (`1e3 eps`) that are not an exact tie are
+/// taken in the lexicographic rule's order, which may be the wrong one: the
+/// block `[[1, 1], [1, 1 + 2^-46]]` with `q = (1.5, 1.5 + 2.5 2^-46)`, `d =
+/// (-1, -(1 + 2^-46))` has `w_1` reach zero `1.4e-14` before `w_2`; f64
+/// enters `z_2` first, and its path (`z_1 = 0` for ever, where exactly
+/// `z_1 = 1` from `L = 2.5`) has a residual of `1.4e-14` on bases of condition
+/// `5e8`: `reached`, and only the certificate sees it
+/// (`plcp/tests/escalate.rs`).
+pub(crate) fn certify_escalating<T: Scalar>(
+    problem: &Plcp<T>,
+    settings: &Settings<T>,
+    path: &mut Path<T>,
+) -> crate::exact::Certificate {
+    let mut cert = crate::exact::certify(problem, path);
+    if !settings.escalate {
+        return cert;
+    }
+    let both_ends = settings.method == Method::Lemke && problem.free() > 0;
+    // at most one step per precision above T, and one spare: a step that
+    // does not change who produced the failing segment ends the loop
+    for _ in 0..3 {
+        let Some(fail) = cert.failure.clone() else {
+            break;
+        };
+        let k = fail.segment.min(path.segments.len().saturating_sub(1));
+        let produced = segment_precision(path, k);
+        let why = format!(
+            "exact certification rejected segment {} ({produced}): {}",
+            fail.segment, fail.reason
+        );
+        // the segments before k are certified: restart in the one before it
+        // (no warm restart on a path with turning points, nor past a
+        // breakpoint whose residual exceeded sqrt(eps): [`restart_segment`])
+        let start = restart_segment(path).and_then(|k0| match k {
+            0 => Err(format!("{why}; no certified segment before it")),
+            _ => Ok((k - 1).min(k0)),
+        });
+        if produced == T::NAME && T::NAME != <fx128 as Scalar>::NAME {
+            let reason = format!("{} in {}: {why}", path.status.as_str(), T::NAME);
+            fx128_from(problem, settings, path, start, reason);
+            trace_measure(problem, path, both_ends);
+            if settings.escalate_exact && path.status == Status::IllConditioned {
+                continue_exactly(problem, settings, path);
+                trace_measure(problem, path, both_ends);
+            }
+        } else if produced != "exact" && settings.escalate_exact {
+            path.message = format!("{why}. {}", path.message);
+            exact_from(problem, settings, path, start);
+            trace_measure(problem, path, both_ends);
+        } else {
+            break;
+        }
+        cert = crate::exact::certify(problem, path);
+    }
+    cert
+}
+
+/// The spliced path's start and end measured on the original problem and
+/// the residual guard, as [`crate::solve`] does after a continuation.
+fn trace_measure<T: Scalar>(problem: &Plcp<T>, path: &mut Path<T>, both_ends: bool) {
+    crate::trace::measure(problem, path, both_ends);
+    crate::trace::guard_residual(path);
 }

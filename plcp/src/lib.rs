@@ -138,7 +138,11 @@ pub fn solve<T: Scalar>(problem: &Plcp<T>, settings: &Settings<T>) -> Result<Pat
 /// [`exact::trace`]), `lambda_reached` falls back to the start of the failing
 /// segment, and the message gives the certificate's reason. So a success
 /// status from this function is a certified one. Costs one exact pivot per
-/// basis change (`docs/certification.md`).
+/// basis change (`docs/certification.md`). With [`Settings::escalate`] (and
+/// [`Settings::escalate_exact`]) a rejected segment is first traced again in
+/// `fx128` (then exactly) from the certified one before it, and the new path
+/// certified ([`Escalation::segment_precisions`] says which precision produced
+/// which segment).
 ///
 /// ```
 /// use faer::{mat, col};
@@ -154,7 +158,7 @@ pub fn solve_certified<T: Scalar>(
     settings: &Settings<T>,
 ) -> Result<Path<T>, PlcpError> {
     let mut path = solve(problem, settings)?;
-    let cert = exact::certify(problem, &path);
+    let cert = escalate::certify_escalating(problem, settings, &mut path);
     reject_uncertified(&mut path, &cert);
     path.info.certificate = Some(cert);
     Ok(path)

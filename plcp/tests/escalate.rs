@@ -265,3 +265,204 @@ fn exact_tail_reaches_l_max_after_float_segments() {
         assert!((a - e).abs() <= 1e-15 * e.abs().max(1.0), "{a} vs {e}");
     }
 }
+
+/// Issue 14: a problem on which f64 and then fx128 both give a wrong path
+/// that they report `reached` (no basis looks ill-conditioned to them), so
+/// that only the certificate sees it; block diagonal, `L_max = 6`:
+///
+/// * `w_0 = 1 - L + z_0`: an event at `L = 1` that every precision gets;
+/// * `[[1, 1], [1, 1 + delta]]`, `delta = 2^-46`, `q = (1.5, 1.5 + 2.5 delta)`,
+///   `d = (-1, -(1 + delta))`: `z_1` enters at `L = 1.5` and `z_2` at `2.5`
+///   (`w_2 = delta (2.5 - L)` in between); `w_2` reaches zero `1.4e-14` after
+///   `w_1`, inside f64's tie window, and f64 enters `z_2` first: its path has
+///   `w_1 = -1.4e-14` and `z_1 = 0` for ever (exactly `z_1 = 1` from
+///   `L = 2.5`);
+/// * the Fibonacci block `[[F73, F72], [F72, F71]]` (determinant 1, condition
+///   `1.7e30`), `d = -M (1, 1)`, `q = M (3, 4)`: `z_3` enters at
+///   `L = 3.38...` and `z_4` at `4` (`w_4 = (4 - L) / F73` in between, below
+///   fx128's resolution of the row): fx128 enters `z_4` at `3.38` instead.
+///
+/// `solve_certified` with `Settings::escalate` and `escalate_exact` lets the
+/// certificate drive the chain: the rejected f64 segment is traced again in
+/// fx128 from the certified segment before it, the rejected fx128 segment
+/// exactly, and the path ends `reached`, certified, with the exact path's
+/// breakpoints; `Escalation::segment_precisions` reads f64, f128, exact in
+/// that order. Before, the rejection only turned the answer
+/// `ill_conditioned` (the chain was never reached: neither float path ends
+/// `ill_conditioned`).
+fn f64_and_fx128_both_wrong() -> Plcp<f64> {
+    let mut f = vec![0.0f64, 1.0];
+    for i in 2..=73 {
+        let next = f[i - 1] + f[i - 2];
+        f.push(next);
+    }
+    let (a, b, c) = (f[73], f[72], f[71]);
+    let (ai, bi, ci) = (a as i128, b as i128, c as i128);
+    assert_eq!(ai * ci - bi * bi, 1, "Cassini: a determinant of one");
+    let delta = 2f64.powi(-46);
+    let m = faer::mat![
+        [1.0, 0.0, 0.0, 0.0, 0.0],
+        [0.0, 1.0, 1.0, 0.0, 0.0],
+        [0.0, 1.0, 1.0 + delta, 0.0, 0.0],
+        [0.0, 0.0, 0.0, a, b],
+        [0.0, 0.0, 0.0, b, c],
+    ];
+    let q = faer::col![
+        1.0,
+        1.5,
+        1.5 + 2.5 * delta,
+        3.0 * a + 4.0 * b,
+        3.0 * b + 4.0 * c
+    ];
+    let d = faer::col![-1.0, -1.0, -(1.0 + delta), -(a + b), -(b + c)];
+    // every entry exact in f64 (below 2^53, or a short binary fraction)
+    assert!(q[3] < 2f64.powi(53) && q[3] as i128 == 3 * ai + 4 * bi);
+    Plcp::new(m.as_ref(), q.as_ref(), d.as_ref())
+        .unwrap()
+        .with_range(0.0, Some(6.0))
+        .unwrap()
+}
+
+#[test]
+fn certificate_drives_the_chain_f64_fx128_exact_to_reached() {
+    let problem = f64_and_fx128_both_wrong();
+    let exact = plcp::exact::trace(&problem, &Settings::default()).unwrap();
+    assert_eq!(exact.path.status, Status::Reached, "{}", exact.path.message);
+    let shorts: Vec<String> = exact.breakpoints.iter().map(plcp::exact::short).collect();
+    assert_eq!(shorts[..3], ["1", "3/2", "5/2"], "{shorts:?}");
+    assert_eq!(shorts[4], "4", "{shorts:?}");
+    // the case: both float paths claim reached, both are rejected
+    let plain = plcp::solve(&problem, &Settings::default()).unwrap();
+    assert_eq!(plain.status, Status::Reached, "{}", plain.message);
+    let c = plain.certify(&problem);
+    assert_eq!(
+        c.failure.as_ref().expect("f64 wrong").segment,
+        2,
+        "{}",
+        c.summary()
+    );
+    let wide = problem.cast::<fx128>();
+    let plain128 = plcp::solve(&wide, &Settings::default()).unwrap();
+    assert_eq!(plain128.status, Status::Reached, "{}", plain128.message);
+    assert!(!plain128.certify(&wide).certified());
+    // with escalate the plain solve changes nothing (no basis looks bad)
+    let chain = Settings::<f64> {
+        escalate: true,
+        escalate_exact: true,
+        ..Settings::default()
+    };
+    let esc = plcp::solve(&problem, &chain).unwrap();
+    assert!(esc.info.escalation.is_none());
+    // certified without escalation: refused, not a wrong success
+    let refused = plcp::solve_certified(&problem, &Settings::default()).unwrap();
+    assert_eq!(
+        refused.status,
+        Status::IllConditioned,
+        "{}",
+        refused.message
+    );
+    // up to fx128 only: its path is rejected too, so still refused
+    let to128 = plcp::solve_certified(
+        &problem,
+        &Settings {
+            escalate_exact: false,
+            ..chain.clone()
+        },
+    )
+    .unwrap();
+    assert_eq!(to128.status, Status::IllConditioned, "{}", to128.message);
+    let precs = &to128
+        .info
+        .escalation
+        .as_ref()
+        .expect("escalated")
+        .segment_precisions;
+    assert!(
+        precs.contains(&"f128") && !precs.contains(&"exact"),
+        "{precs:?}"
+    );
+    // the whole chain
+    let path = plcp::solve_certified(&problem, &chain).unwrap();
+    println!("{}", path.message);
+    assert_eq!(path.status, Status::Reached, "{}", path.message);
+    let cert = path.info.certificate.as_ref().unwrap();
+    assert!(cert.certified(), "{}", cert.summary());
+    let e = path.info.escalation.as_ref().expect("escalated");
+    assert!(e.exact, "{}", e.exact_note);
+    let precs = &e.segment_precisions;
+    println!("{precs:?}");
+    assert_eq!(precs.len(), path.segments.len());
+    let first = |name: &str| precs.iter().position(|p| *p == name);
+    let (Some(a), Some(b), Some(c)) = (first("f64"), first("f128"), first("exact")) else {
+        panic!("f64, f128 and exact segments: {precs:?}");
+    };
+    assert!(a < b && b < c, "{precs:?}");
+    let last = |name: &str| precs.iter().rposition(|p| *p == name).unwrap();
+    assert!(last("f64") < b && last("f128") < c, "{precs:?}");
+    assert_eq!(e.lambda_exact, path.segments[c].lambda_from.to_f64());
+    // the exact path's breakpoints (and L_max)
+    assert_eq!(path.breakpoints.len(), exact.breakpoints.len());
+    for (x, y) in path.breakpoints.iter().zip(&exact.breakpoints) {
+        let y = plcp::exact::rational_to_f64(y);
+        assert!((x.lambda - y).abs() <= 1e-15 * y.abs(), "{x:?} vs {y}");
+    }
+    assert_eq!(path.lambda_reached, 6.0);
+    let z = path.at(5.0).unwrap().z;
+    assert!((z[1] - 1.0).abs() <= 1e-12, "z_1 = 1 beyond L = 2.5: {z:?}");
+}
+
+/// The same chain from the command line: `plcp solve --certify --escalate`
+/// reports `reached` with a certificate and `segment_precisions` f64, f128,
+/// exact; `--certify` alone reports `ill_conditioned`.
+#[cfg(feature = "cli")]
+#[test]
+fn the_command_line_runs_the_chain() {
+    use serde_json::{json, Value};
+    let problem = f64_and_fx128_both_wrong();
+    let n = problem.n();
+    let m = problem.m();
+    let rows: Vec<Vec<f64>> = (0..n)
+        .map(|i| (0..n).map(|j| m[(i, j)]).collect())
+        .collect();
+    let col = |c: faer::ColRef<'_, f64>| (0..n).map(|i| c[i]).collect::<Vec<f64>>();
+    let text = json!({
+        "M": rows,
+        "q": col(problem.q()),
+        "d": col(problem.d()),
+        "lambda_max": 6.0,
+    })
+    .to_string();
+    let file = std::env::temp_dir().join(format!("plcp-chain-{}.json", std::process::id()));
+    std::fs::write(&file, text).unwrap();
+    let run = |extra: &[&str]| -> Value {
+        let out = std::process::Command::new(env!("CARGO_BIN_EXE_plcp"))
+            .arg("solve")
+            .arg(&file)
+            .args(["--certify", "--quiet"])
+            .args(extra)
+            .output()
+            .expect("run plcp");
+        assert_eq!(
+            out.status.code(),
+            Some(0),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        serde_json::from_slice(&out.stdout).expect("one JSON object")
+    };
+    let refused = run(&[]);
+    let chained = run(&["--escalate"]);
+    let _ = std::fs::remove_file(&file);
+    assert_eq!(refused["status"], "ill_conditioned", "{refused}");
+    assert_eq!(chained["status"], "reached", "{chained}");
+    assert_eq!(chained["certificate"]["certified"], true, "{chained}");
+    let precs: Vec<&str> = chained["segment_precisions"]
+        .as_array()
+        .expect("segment_precisions")
+        .iter()
+        .map(|v| v.as_str().unwrap())
+        .collect();
+    let mut order = precs.clone();
+    order.dedup();
+    assert_eq!(order, ["f64", "f128", "exact"], "{precs:?}");
+}

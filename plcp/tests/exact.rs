@@ -306,3 +306,27 @@ fn the_command_line_certifies() {
     assert!(compact.contains(r#""breakpoints":["1"]"#), "{stdout}");
     std::fs::remove_dir_all(&dir).ok();
 }
+
+/// The exact path names its breakpoints as the float paths do: the variable
+/// that enters is the leaving one's complement (`z_0` for `w_0` at `L = 1`).
+/// It named the column pivoted in at the breakpoint, the one that had been
+/// moving: `L` at the first, then the previous complement (`in L out w0`,
+/// `in z0 out w1`), and an escalated path mixed both conventions.
+#[test]
+fn exact_breakpoints_name_the_entering_variable_as_the_float_paths_do() {
+    let m = faer::mat![[4.0, 1.0, 0.5], [1.0, 3.0, 1.0], [0.5, 1.0, 2.0]];
+    let q = faer::col![1.0, 2.0, 3.0];
+    let d = faer::col![-1.0, -1.0, -1.0];
+    let problem = plcp::Plcp::new(m.as_ref(), q.as_ref(), d.as_ref()).unwrap();
+    let float = plcp::solve(&problem, &Settings::default()).unwrap();
+    let exact = plcp::exact::trace(&problem, &Settings::default()).unwrap();
+    assert_eq!(float.breakpoints.len(), 3);
+    let names = |p: &plcp::Path<f64>| -> Vec<(plcp::Var, plcp::Var)> {
+        p.breakpoints
+            .iter()
+            .map(|b| (b.entering, b.leaving))
+            .collect()
+    };
+    assert_eq!(names(&exact.path), names(&float));
+    assert_eq!(names(&exact.path)[0], (plcp::Var::Z(0), plcp::Var::W(0)));
+}

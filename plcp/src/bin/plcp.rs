@@ -1,7 +1,7 @@
 //! The plcp command line.
 //!
 //! ```text
-//! plcp solve FILE.json [--method lemke|wolfe] [--precision f32|f64|f128|exact] [--lambda-max X] [--at L1,L2,...] [--certify] [--segments all|none] [--quiet]
+//! plcp solve FILE.json [--method lemke|wolfe] [--precision f32|f64|f128|exact] [--lambda-max X] [--at L1,L2,...] [--certify] [--escalate] [--segments all|none] [--quiet]
 //! plcp lcp FILE.dat [--precision f32|f64|f128]
 //! ```
 //!
@@ -14,7 +14,11 @@
 //! `solve --certify` checks the path in exact rational arithmetic
 //! ([`plcp::solve_certified`]) and adds a `certificate` object to the JSON
 //! ([`plcp::Certificate::to_json`]); a success the certificate rejects is
-//! reported `ill_conditioned`. `solve --precision exact` traces the path in
+//! reported `ill_conditioned`. `solve --escalate` continues the path in f128,
+//! then exactly, where the working precision gives up (with `--certify`:
+//! where the certificate rejects a segment; [`plcp::Settings::escalate`]) and
+//! adds `segment_precisions` (which precision produced each segment).
+//! `solve --precision exact` traces the path in
 //! exact arithmetic ([`plcp::exact::trace`], the data read as `f64`, order at
 //! most [`plcp::exact::EXACT_MAX_DIM`]); its JSON adds `exact_breakpoints`
 //! (short fractions such as `"13/3"`, else decimals).
@@ -65,6 +69,10 @@ enum Command {
         /// Certify the path in exact rational arithmetic (adds a "certificate" object).
         #[arg(long)]
         certify: bool,
+        /// Continue in f128, then exactly, where the working precision gives
+        /// up (with --certify: where the certificate rejects a segment).
+        #[arg(long)]
+        escalate: bool,
         /// End of the parameter range, overriding the file's (a number, or inf).
         #[arg(long, value_parser = parse_lambda_max, allow_hyphen_values = true)]
         lambda_max: Option<f64>,
@@ -161,6 +169,8 @@ struct SolveOptions {
     lambda_max: Option<f64>,
     at: Vec<f64>,
     certify: bool,
+    /// `Settings::escalate` and `escalate_exact` (`--escalate`).
+    escalate: bool,
     exact: bool,
     threads: Option<usize>,
     quiet: bool,
@@ -174,13 +184,14 @@ fn solve<T: Scalar>(file: &std::path::Path, options: &SolveOptions) -> Result<Re
         lambda_max,
         ref at,
         certify,
+        escalate,
         exact,
         threads,
         quiet,
         segments,
     } = *options;
     let bytes = plcp::io::read_bytes(file).map_err(in_file(file))?;
-    if plcp::io::sparse_json::is_sparse_json(&bytes) && !exact && !certify {
+    if plcp::io::sparse_json::is_sparse_json(&bytes) && !exact && !certify && !escalate {
         return solve_sparse::<T>(&bytes, file, method, lambda_max, at);
     }
     let mut problem =
@@ -193,6 +204,8 @@ fn solve<T: Scalar>(file: &std::path::Path, options: &SolveOptions) -> Result<Re
     }
     let settings = Settings::<T> {
         threads,
+        escalate,
+        escalate_exact: escalate,
         ..Settings::with_method(method)
     };
     let start = Instant::now();
@@ -245,6 +258,12 @@ fn solve<T: Scalar>(file: &std::path::Path, options: &SolveOptions) -> Result<Re
     let mut extra = serde_json::Map::new();
     if let Some(c) = &path.info.certificate {
         extra.insert("certificate".into(), c.to_json());
+    }
+    if let Some(e) = &path.info.escalation {
+        extra.insert(
+            "segment_precisions".into(),
+            e.segment_precisions.clone().into(),
+        );
     }
     Ok(Report::path(problem, path, at, seconds, segments, extra))
 }
@@ -353,6 +372,7 @@ fn run(command: Command) -> Result<Report, InputError> {
             method,
             precision,
             certify,
+            escalate,
             lambda_max,
             at,
             threads,
@@ -366,6 +386,7 @@ fn run(command: Command) -> Result<Report, InputError> {
                 lambda_max,
                 at,
                 certify,
+                escalate,
                 exact: matches!(precision, SolvePrecision::Exact),
                 threads,
                 quiet,

@@ -535,9 +535,14 @@ impl Run {
             if degenerate {
                 self.degenerate += 1;
             }
+            // the float paths' convention: the variable that enters is the
+            // leaving one's complement, which drives the next segment (the
+            // column pivoted in here, `L` at the first breakpoint, is the
+            // one that was moving)
+            let next = Self::complement_col(t, leaving).unwrap_or(entering);
             self.breakpoints.push(Breakpoint {
                 lambda: rational_to_f64(&self.lambda),
-                entering: t.var_of(entering).expect("a variable"),
+                entering: t.var_of(next).expect("a variable"),
                 leaving: t.var_of(leaving).expect("a variable"),
                 degenerate,
                 turning,
