@@ -57,6 +57,11 @@
 //! }
 //! assert!(a.reading.deactivations().is_empty());
 //! ```
+//!
+//! **Features.** `json` (the JSON report, serde_json) and `plot` (SVG plots,
+//! plotters) are on by default, with `cli` (the `frames` binary, clap), which
+//! implies both. Without default features the crate depends on plcp, faer,
+//! serde, toml and thiserror: the analysis and the text report.
 #![deny(missing_docs)]
 
 pub mod analysis;
@@ -67,6 +72,7 @@ pub mod integrate;
 mod kernel;
 pub mod kind;
 pub mod model;
+#[cfg(feature = "plot")]
 pub mod plot;
 pub mod report;
 pub mod response;

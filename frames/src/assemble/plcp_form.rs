@@ -107,6 +107,7 @@ impl System {
     }
 
     /// The mixed PLCP as plcp's JSON input: `{"M": rows, "q", "d", "lambda_max", "free"}`.
+    #[cfg(feature = "json")]
     pub fn plcp_json(&self, lambda_max: Option<f64>) -> serde_json::Value {
         let (m, q, d) = self.blocks();
         let rows: Vec<Vec<f64>> = (0..m.nrows())

@@ -20,19 +20,23 @@
 //! report (`text`) and the JSON document with [`JsonReport`] (`json`).
 
 mod facets;
+#[cfg(feature = "json")]
 mod json;
 mod selection;
 mod text;
 mod wording;
 
+#[cfg(feature = "json")]
 pub use json::JsonReport;
 pub use selection::{
     sample_indices, spread, HingeSets, MomentPick, NodePick, OutputSelection, DEFAULT_SAMPLES,
     SMALL_SCENE,
 };
 
+#[cfg(feature = "json")]
 use serde_json::{json, Value};
 
+#[cfg(feature = "json")]
 fn num(x: f64) -> Value {
     if x.is_finite() {
         json!(x)

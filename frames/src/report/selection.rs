@@ -199,6 +199,7 @@ impl OutputSelection {
         }
     }
     /// One line for the report: what was selected out of how many.
+    #[cfg(feature = "json")]
     pub(super) fn describe(&self, what: &str, kept: usize, of: usize, flag: &str) -> String {
         if kept == of {
             format!("{what}: all {of}")

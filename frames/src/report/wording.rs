@@ -67,6 +67,7 @@ impl Analysis {
         format!("{}.{}", self.scene.frame.nodes[node].id, c.as_str())
     }
 
+    #[cfg(feature = "json")]
     pub(super) fn force_name(&self, f: &MemberForce) -> String {
         let fr = &self.scene.frame;
         match *f {

@@ -195,6 +195,7 @@ impl Continuation {
     }
 
     /// The JSON object of the continuation.
+    #[cfg(feature = "json")]
     pub fn to_json(&self, analysis: &Analysis) -> Value {
         let r = &self.run;
         let fr = &analysis.scene.frame;

@@ -80,6 +80,7 @@ use crate::model::History;
 use crate::report::format_number;
 use faer::{Col, Mat};
 use plcp::{Method, Plcp, Settings, Status, Var};
+#[cfg(feature = "json")]
 use serde_json::{json, Value};
 
 mod compare;

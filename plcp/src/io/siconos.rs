@@ -257,34 +257,8 @@ fn read_sparse_block(r: &mut Reader<'_>, n: usize) -> Result<Vec<f64>, PlcpError
             format!("blocknumber1 = {bn1} block columns: expected 1 to n = {n}"),
         ));
     }
-    let ends = |r: &mut Reader<'_>, count: usize, kind: &str| -> Result<Vec<usize>, PlcpError> {
-        let mut v = Vec::with_capacity(count);
-        let mut prev = 0;
-        for k in 0..count {
-            let (e, l, c) = r.int(&|| format!("the end index of {kind} block {k}"))?;
-            if e <= prev || e > n {
-                return Err(r.error_at(
-                    l,
-                    c,
-                    format!(
-                        "end index {e} of {kind} block {k}: the ends must increase strictly, from above 0 up to n = {n}"
-                    ),
-                ));
-            }
-            if k + 1 == count && e != n {
-                return Err(r.error_at(
-                    l,
-                    c,
-                    format!("the last {kind} block ends at {e}, expected n = {n}"),
-                ));
-            }
-            prev = e;
-            v.push(e);
-        }
-        Ok(v)
-    };
-    let row_end = ends(r, bn0, "row")?;
-    let col_end = ends(r, bn1, "column")?;
+    let row_end = read_block_ends(r, bn0, n, "row")?;
+    let col_end = read_block_ends(r, bn1, n, "column")?;
     let (filled1, l, c) = r.int(&|| "filled1 (the length of the row-block pointer)".into())?;
     if filled1 != bn0 + 1 {
         return Err(r.error_at(
@@ -390,6 +364,40 @@ fn read_sparse_block(r: &mut Reader<'_>, n: usize) -> Result<Vec<f64>, PlcpError
         }
     }
     Ok(m)
+}
+
+/// Reads the `count` end indices of the row or column blocks (`kind`), which
+/// must increase strictly from above 0 and end at `n`.
+fn read_block_ends(
+    r: &mut Reader<'_>,
+    count: usize,
+    n: usize,
+    kind: &str,
+) -> Result<Vec<usize>, PlcpError> {
+    let mut v = Vec::with_capacity(count);
+    let mut prev = 0;
+    for k in 0..count {
+        let (e, l, c) = r.int(&|| format!("the end index of {kind} block {k}"))?;
+        if e <= prev || e > n {
+            return Err(r.error_at(
+                l,
+                c,
+                format!(
+                    "end index {e} of {kind} block {k}: the ends must increase strictly, from above 0 up to n = {n}"
+                ),
+            ));
+        }
+        if k + 1 == count && e != n {
+            return Err(r.error_at(
+                l,
+                c,
+                format!("the last {kind} block ends at {e}, expected n = {n}"),
+            ));
+        }
+        prev = e;
+        v.push(e);
+    }
+    Ok(v)
 }
 
 fn build<T: Scalar>(m: &[f64], q: &[f64], n: usize) -> Result<Lcp<T>, PlcpError> {
