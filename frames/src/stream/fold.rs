@@ -33,6 +33,17 @@ pub(super) struct Plan {
 }
 
 impl Plan {
+    /// The diagrams at the selected breakpoints, their moments not yet read.
+    pub(super) fn empty_diagrams(&self) -> Vec<MomentDiagram> {
+        self.diagram_lambdas
+            .iter()
+            .map(|&lambda| MomentDiagram {
+                lambda,
+                moments: Vec::new(),
+            })
+            .collect()
+    }
+
     pub(super) fn new(
         system: &System,
         reading: &Reading,
@@ -197,15 +208,7 @@ impl<'a> Fold<'a> {
             slots.entry(t.to_bits()).or_default().push(k);
         }
         let nb = cx.system.coordinates.len();
-        let diagrams = cx
-            .plan
-            .diagram_lambdas
-            .iter()
-            .map(|&lambda| MomentDiagram {
-                lambda,
-                moments: Vec::new(),
-            })
-            .collect();
+        let diagrams = cx.plan.empty_diagrams();
         let mut fold = Fold {
             cx,
             slots,

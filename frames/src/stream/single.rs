@@ -10,7 +10,7 @@ use crate::hinge::{self, EventPoint, Interval, Reading};
 use crate::integrate::step;
 use crate::model::{History, Scene};
 use crate::report::{MomentPick, NodePick};
-use crate::response::{self, affine_accelerations, MomentDiagram, Response};
+use crate::response::{self, affine_accelerations, Response};
 use crate::solve::{self, Piece};
 use std::collections::HashMap;
 
@@ -435,14 +435,7 @@ impl<'a> Single<'a> {
         for (iv, acc) in intervals.iter_mut().zip(std::mem::take(&mut self.acc_rows)) {
             iv.accelerations = acc;
         }
-        let mut diagrams: Vec<MomentDiagram> = plan
-            .diagram_lambdas
-            .iter()
-            .map(|&lambda| MomentDiagram {
-                lambda,
-                moments: Vec::new(),
-            })
-            .collect();
+        let mut diagrams = plan.empty_diagrams();
         let ns = self.system.sections.len();
         let mut kept_pieces: HashMap<usize, Piece> = HashMap::new();
         for k in needed {

@@ -471,6 +471,12 @@ impl<'a, T: Scalar> Engine<'a, T> {
         pt.w.as_mut().fill(T::zero());
         pt.u.as_mut().fill(T::zero());
         let Point { z, w, u, .. } = pt;
+        self.scatter(driver, z, w, u);
+    }
+
+    /// The basic values, and `driver` at its value, written into zeroed
+    /// `(z, w, u)`.
+    fn scatter(&self, driver: Option<(Var, T)>, z: &mut Col<T>, w: &mut Col<T>, u: &mut Col<T>) {
         let mut set = |v: Var, val: T| match v {
             Var::W(i) => w[i] = val,
             Var::Z(i) => z[i] = val,
@@ -489,18 +495,7 @@ impl<'a, T: Scalar> Engine<'a, T> {
     /// on new zero columns, without filling them with zeros again).
     pub(crate) fn point(&self, driver: Option<(Var, T)>) -> Point<T> {
         let (mut z, mut w, mut u) = (Col::zeros(self.n), Col::zeros(self.n), Col::zeros(self.p));
-        let mut set = |v: Var, val: T| match v {
-            Var::W(i) => w[i] = val,
-            Var::Z(i) => z[i] = val,
-            Var::U(j) => u[j] = val,
-            _ => {}
-        };
-        for (r, v) in self.basis.iter().enumerate() {
-            set(*v, self.x[r]);
-        }
-        if let Some((v, t)) = driver {
-            set(v, t);
-        }
+        self.scatter(driver, &mut z, &mut w, &mut u);
         Point {
             lambda: self.lambda,
             z,
