@@ -19,6 +19,7 @@ const PIVOT_TOL_ON_COMP_ROWS: bool = false;
 /// The covering vector brought to the right-hand side's power of two: off.
 const SCALE_COVERING: bool = true;
 
+mod cycle;
 mod free;
 mod phases;
 mod ratio;
@@ -151,6 +152,8 @@ pub(crate) struct Engine<'a, T: Scalar> {
     col_buf: Col<T>,
     a_buf: Col<T>,
     bx_buf: Col<T>,
+    /// The fingerprints of the bases of the current trace ([`cycle`]).
+    cycle: cycle::CycleGuard,
 }
 
 /// The two accumulators of [`Engine::wide_residual_pair`] (values, column).
@@ -268,6 +271,7 @@ impl<'a, T: Scalar> Engine<'a, T> {
             col_buf: Col::zeros(0),
             a_buf: Col::zeros(0),
             bx_buf: Col::zeros(0),
+            cycle: cycle::CycleGuard::default(),
         };
         for (r, v) in basis.iter().enumerate() {
             let k = e.var_index(*v);

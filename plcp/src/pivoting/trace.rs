@@ -43,9 +43,13 @@ impl<'a, T: Scalar> Engine<'a, T> {
         if self.row_of(Var::Lambda).is_some() {
             return TraceEnd::Stalled("internal: trace must start with L nonbasic".into());
         }
+        self.cycle.start(self.basis_fingerprint());
         loop {
             if self.pivots >= self.max_pivots || crate::observe::stop_requested() {
                 return TraceEnd::PivotLimit;
+            }
+            if let Some(k) = self.cycle.visit(self.pivots) {
+                return TraceEnd::IllConditioned(self.cycle_message(k));
             }
             // the entering column refined inside its solve, where the basis can
             // (the block basis refines on S alone: no extra pass over the matrix)
@@ -170,6 +174,8 @@ impl<'a, T: Scalar> Engine<'a, T> {
             if let Err(msg) = self.pivot(r, driver, &col, value) {
                 return TraceEnd::IllConditioned(msg);
             }
+            self.cycle
+                .pivot(self.var_index(leaving), self.var_index(driver));
             match leaving {
                 Var::W(_) | Var::Z(_) => {
                     let next = leaving.complement().expect("complementary");
@@ -188,7 +194,11 @@ impl<'a, T: Scalar> Engine<'a, T> {
                     driver = next;
                 }
                 Var::Artificial(_) => match self.unlock_lambda() {
-                    Ok(true) => driver = Var::Lambda,
+                    Ok(true) => {
+                        // (its pivots are not seen by the guard's updates)
+                        self.cycle.rekey(self.basis_fingerprint());
+                        driver = Var::Lambda;
+                    }
                     Ok(false) => {
                         return TraceEnd::Stalled(format!(
                             "at L = {:e} an equality row blocks the path and no free variable can take over: the path cannot be continued",
@@ -303,6 +313,22 @@ impl<'a, T: Scalar> Engine<'a, T> {
             }
         }
         Ok(())
+    }
+
+    /// The fingerprint of the current basis ([`super::cycle`]).
+    fn basis_fingerprint(&self) -> u128 {
+        cycle::CycleGuard::fingerprint(self.basis.iter().map(|&v| self.var_index(v)))
+    }
+
+    /// The status message of a basis that came back ([`super::cycle`]).
+    fn cycle_message(&self, first: usize) -> String {
+        format!(
+            "at L = {:e} the basis of pivot {first} came back at pivot {}: the path is a closed loop (a singular M can make one; exact arithmetic reports it as secondary_ray) or cycles in the rounding of {} (its steps below the rounding of its values; basis condition estimate up to {:.1e}); the path is not continued; a higher precision or exact arithmetic tells which",
+            self.lambda.to_f64(),
+            self.pivots,
+            T::NAME,
+            self.max_cond
+        )
     }
 
     pub(super) fn note_direction(&self, rec: &mut Recorder<T>, sign: i8) {
