@@ -419,7 +419,8 @@ impl<'a, T: Scalar> Engine<'a, T> {
 
     /// Whether `q + lambda d` equals the engine's right-hand side at its
     /// current `L` (`q_old + L d_old`, `L` nonbasic) entry by entry to one
-    /// rounding of the larger (`2 eps` relative): the basic values it holds
+    /// rounding of the sums (`2 eps` of their largest term: `g_{k-1}` and
+    /// `g_{k-2} + (g_{k-1} - g_{k-2})` differ by that): the basic values it holds
     /// solve the new data to within that rounding, a backward error the
     /// fresh solve has too.
     fn continues(&self, q: faer::ColRef<'_, T>, d: faer::ColRef<'_, T>, lambda: T) -> bool {
@@ -429,8 +430,11 @@ impl<'a, T: Scalar> Engine<'a, T> {
         let tol = T::from_f64(2.0) * T::eps();
         (0..self.dim).all(|i| {
             let new = q[i] + lambda * d[i];
-            let old = self.q[i] + self.lambda * self.d[i];
-            new == old || (new - old).abs() <= tol * new.abs().max(old.abs())
+            let (a, b) = (self.q[i], self.lambda * self.d[i]);
+            let old = a + b;
+            // one rounding of either sum: relative to its largest term
+            let size = new.abs().max(a.abs()).max(b.abs());
+            new == old || (new - old).abs() <= tol * size
         })
     }
 
