@@ -124,6 +124,13 @@ pub fn matmul<T: Scalar>(a: MatRef<'_, T>, b: MatRef<'_, T>) -> Mat<T> {
 /// the refactorisations of blocks of order 322 and more still use the pool.)
 pub const PAR_MIN_ENTRIES: usize = 1 << 19;
 
+/// Products of fewer entries than this stay on the calling thread even when
+/// [`crate::Settings::threads`] asks for more than one: below it (a pass over
+/// `2^16` doubles, 512 KB, some 30 us) splitting the work costs more than the
+/// pass. Between this and [`PAR_MIN_ENTRIES`] only an explicit setting
+/// spreads the work: the default's measured threshold is the higher one.
+pub const PAR_SPLIT_MIN: usize = 1 << 16;
+
 /// The parallelism for a pass over `entries` matrix entries (see [`PAR_MIN_ENTRIES`]).
 pub fn par_for(entries: usize) -> faer::Par {
     if entries < PAR_MIN_ENTRIES {

@@ -126,12 +126,15 @@ pub struct Settings<T: Scalar> {
     pub escalate_exact: bool,
     /// Threads for the large products of the block basis (its refactorisation
     /// and the flush of pending updates). `Some(1)`: the calling thread only;
-    /// `Some(k)`: up to `k` threads of rayon's pool; `None` (default): by size,
+    /// `Some(k)`: `k` threads of rayon's pool for every product of at least
+    /// 2^16 entries (`PAR_SPLIT_MIN`; inversions from order 322); `None`
+    /// (default): by size,
     /// the calling thread for products under 2^19 (`PAR_MIN_ENTRIES`)
     /// entries and inversions of order under 645, faer's global parallelism
     /// above (so sizes up to n = 1000 on dense families never wake a pool).
-    /// `Some(1)` holds for the inversions at refactorisation too (test
-    /// `plcp/tests/threads.rs`). The arithmetic of the passes, and so the
+    /// The setting holds for the inversions at refactorisation too (test
+    /// `plcp/tests/threads.rs`: the default and `Some(1)` start no pool at
+    /// n = 700, `Some(2)` does). The arithmetic of the passes, and so the
     /// path, is the same either way.
     pub threads: Option<usize>,
 }

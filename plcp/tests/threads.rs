@@ -38,37 +38,68 @@ fn threads_now() -> usize {
         .unwrap_or(0)
 }
 
-/// A path at n = 700 whose basis block grows past order 322 (where the
-/// inversion at refactorisation went parallel by faer's global setting)
-/// with `threads: Some(1)`: the thread count of the process does not grow.
-#[cfg(target_os = "linux")]
-#[test]
-fn one_thread_setting_starts_no_pool() {
-    let n = 700;
+fn solve_with(n: usize, threads: Option<usize>) -> plcp::Path<f64> {
     let (m, q, d) = instance(n);
     let problem = Plcp::new(m.as_ref(), q.as_ref(), d.as_ref())
         .unwrap()
         .with_range(0.0, Some(50.0))
         .unwrap();
     let settings = Settings::<f64> {
-        threads: Some(1),
+        threads,
         ..Settings::default()
     };
+    plcp::solve(&problem, &settings).unwrap()
+}
+
+/// A path at n = 700 whose basis block grows past order 322 (where the
+/// inversion at refactorisation went parallel by faer's global setting):
+/// with the default (by size: every product of this path is under the
+/// parallel thresholds) and with `threads: Some(1)` the thread count of the
+/// process does not grow; with `Some(2)` it does (the setting overrides the
+/// size rule's `Par::Seq` for the inversions and the passes over `S^{-1}`
+/// that are large enough to be split at all). The three paths are the same.
+/// (One test: the rayon pool, once started, stays.)
+#[cfg(target_os = "linux")]
+#[test]
+fn thread_setting_is_honoured() {
+    let n = 700;
     let before = threads_now();
-    let path = plcp::solve(&problem, &settings).unwrap();
-    let after = threads_now();
+    let default = solve_with(n, None);
+    let after_default = threads_now();
+    let one = solve_with(n, Some(1));
+    let after_one = threads_now();
+    assert!(one.status.is_success(), "{:?}: {}", one.status, one.message);
+    let k = one.end.z.iter().filter(|&&z| z > 0.0).count();
     assert!(
-        path.status.is_success(),
-        "{:?}: {}",
-        path.status,
-        path.message
-    );
-    let k = path.end.z.iter().filter(|&&z| z > 0.0).count();
-    assert!(
-        k > 400 && path.info.refactorisations > 0,
+        k > 400 && one.info.refactorisations > 0,
         "the block must grow past order 322 with refactorisations: {k} basic z, {} refactorisations",
-        path.info.refactorisations
+        one.info.refactorisations
     );
-    assert_ne!(path.status, Status::IllConditioned);
-    assert_eq!(before, after, "threads before and after the solve");
+    assert_ne!(one.status, Status::IllConditioned);
+    assert_eq!(
+        before, after_default,
+        "threads before and after the default solve"
+    );
+    assert_eq!(
+        before, after_one,
+        "threads before and after the one-thread solve"
+    );
+    let two = solve_with(n, Some(2));
+    let after_two = threads_now();
+    assert!(
+        after_two > before,
+        "threads: Some(2) must use the pool ({before} threads before, {after_two} after)"
+    );
+    for (name, other) in [("default", &default), ("two threads", &two)] {
+        assert_eq!(other.status, one.status, "{name}");
+        assert_eq!(other.info.pivots, one.info.pivots, "{name}: pivots");
+        let dz = other
+            .end
+            .z
+            .iter()
+            .zip(one.end.z.iter())
+            .map(|(a, b)| (a - b).abs())
+            .fold(0.0f64, f64::max);
+        assert!(dz <= 1e-12, "{name}: end z differ by {dz:e}");
+    }
 }

@@ -152,13 +152,17 @@ impl<T: Scalar> BlockInverse<T> {
         self
     }
 
-    /// The parallelism of a product over `entries` entries: the calling thread
-    /// below [`crate::linalg::PAR_MIN_ENTRIES`] or with one thread asked for.
+    /// The parallelism of a product over `entries` entries: by default
+    /// ([`crate::Settings::threads`] `None`) the calling thread below
+    /// [`crate::linalg::PAR_MIN_ENTRIES`] and faer's global parallelism above;
+    /// with `Some(1)` the calling thread; with `Some(k)` `k` threads of rayon's
+    /// pool from [`crate::linalg::PAR_SPLIT_MIN`] entries (the setting
+    /// overrides the size rule, not the floor under which a split cannot pay).
     fn par(&self, entries: usize) -> faer::Par {
-        match (self.threads, par_for(entries)) {
-            (_, faer::Par::Seq) | (Some(1), _) => faer::Par::Seq,
-            (Some(k), _) => faer::Par::rayon(k),
-            (None, par) => par,
+        match self.threads {
+            None => par_for(entries),
+            Some(k) if k > 1 && entries >= crate::linalg::PAR_SPLIT_MIN => faer::Par::rayon(k),
+            Some(_) => faer::Par::Seq,
         }
     }
 
