@@ -217,7 +217,11 @@ fn write_report(
         let _ = w.write_all(b"\n");
         let _ = w.flush();
     } else {
-        out(&analysis.to_text());
+        // written line by line (the intervals' hinge sets of a large scene)
+        let mut w = std::io::BufWriter::new(std::io::stdout().lock());
+        let _ = analysis.write_text(&mut w);
+        let _ = w.flush();
+        drop(w);
         if let Some((lambda, t)) = valid {
             out(&format!(
                 "\nWARNING: the PLCP response is NOT VALID beyond Lambda = {} (t = {}): a flowing hinge unloads there{}\n",

@@ -84,6 +84,86 @@ pub struct Span {
     pub lambda_to: f64,
 }
 
+/// A list of hinge groups (indices into [`Reading::groups`], in the order
+/// of the groups), stored as runs of consecutive indices.
+///
+/// Why runs: every interval keeps its sets, and for a travelling hinge the
+/// hinges behind the front (neighbours along a member, consecutive groups)
+/// are in every later interval's `constant_rate`; as lists they grew as
+/// `intervals x hinges` (about half of the 10^4-element cantilever's peak
+/// resident memory), as runs they take one or a few pairs per interval.
+/// The memory of a set is linear in its number of runs, at most its length.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct GroupSet {
+    /// Maximal runs `start..end` (half-open), in the list's order.
+    runs: Vec<(usize, usize)>,
+}
+
+impl GroupSet {
+    /// The empty set.
+    pub fn new() -> Self {
+        Self::default()
+    }
+
+    /// The groups, in the list's order.
+    pub fn iter(&self) -> impl Iterator<Item = usize> + '_ {
+        self.runs.iter().flat_map(|&(a, b)| a..b)
+    }
+
+    /// Whether group `g` is in the set (a pass over the runs).
+    pub fn contains(&self, g: &usize) -> bool {
+        self.runs.iter().any(|&(a, b)| (a..b).contains(g))
+    }
+
+    /// The number of groups.
+    pub fn len(&self) -> usize {
+        self.runs.iter().map(|&(a, b)| b - a).sum()
+    }
+
+    /// Whether the set is empty.
+    pub fn is_empty(&self) -> bool {
+        self.runs.is_empty()
+    }
+
+    /// The groups as a list, in order.
+    pub fn to_vec(&self) -> Vec<usize> {
+        self.iter().collect()
+    }
+
+    /// Appends `g` (extends the last run when `g` follows it).
+    pub fn push(&mut self, g: usize) {
+        match self.runs.last_mut() {
+            Some((_, b)) if *b == g => *b = g + 1,
+            _ => self.runs.push((g, g + 1)),
+        }
+    }
+
+    /// Frees spare capacity (a set kept with every interval).
+    pub fn shrink_to_fit(&mut self) {
+        self.runs.shrink_to_fit();
+    }
+}
+
+impl FromIterator<usize> for GroupSet {
+    fn from_iter<I: IntoIterator<Item = usize>>(iter: I) -> Self {
+        let mut s = Self::new();
+        iter.into_iter().for_each(|g| s.push(g));
+        s
+    }
+}
+
+impl From<Vec<usize>> for GroupSet {
+    fn from(v: Vec<usize>) -> Self {
+        v.into_iter().collect()
+    }
+}
+
+impl From<&[usize]> for GroupSet {
+    fn from(v: &[usize]) -> Self {
+        v.iter().copied().collect()
+    }
+}
+
 /// An interval of `Lambda` with one mechanism.
 ///
 /// The path may pivot inside an interval: in the rigid phase of an
@@ -108,11 +188,11 @@ pub struct Interval {
     /// True before the first plastic flow (the frame does not deform).
     pub rigid: bool,
     /// Groups that accelerate (`x*_dd > 0`).
-    pub accelerating: Vec<usize>,
+    pub accelerating: GroupSet,
     /// Groups that flowed before and rotate at a constant rate (at yield, `x*_dd = 0`).
-    pub constant_rate: Vec<usize>,
+    pub constant_rate: GroupSet,
     /// Groups at yield (reported only where the stress is unique or forced).
-    pub at_yield: Vec<usize>,
+    pub at_yield: GroupSet,
 }
 
 impl Interval {
@@ -183,5 +263,39 @@ impl Reading {
             .iter()
             .flat_map(|b| b.of(EventKind::Unloaded).map(move |e| (b.lambda, e)))
             .collect()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::GroupSet;
+
+    /// A set as runs gives back its list, in order, with its length and
+    /// membership, and two sets are equal exactly when their lists are.
+    #[test]
+    fn group_set_keeps_the_list() {
+        let lists: [&[usize]; 6] = [
+            &[],
+            &[3],
+            &[0, 1, 2, 3],
+            &[0, 2, 4, 5, 6, 9],
+            &[7, 8, 1, 2, 3],
+            &[5, 5, 6],
+        ];
+        for list in lists {
+            let s = GroupSet::from(list);
+            assert_eq!(s.to_vec(), list);
+            assert_eq!(s.len(), list.len());
+            assert_eq!(s.is_empty(), list.is_empty());
+            for g in 0..12 {
+                assert_eq!(s.contains(&g), list.contains(&g), "{list:?} {g}");
+            }
+            for other in lists {
+                assert_eq!(s == GroupSet::from(other), list == other);
+            }
+        }
+        // a contiguous list is one run
+        let run: GroupSet = (0..1000).collect();
+        assert_eq!(run.runs.len(), 1);
     }
 }

@@ -47,7 +47,9 @@ use faer::Mat;
 
 mod events;
 
-pub use events::{EventKind, EventPoint, Hinge, HingeEvent, HingeGroup, Interval, Reading, Span};
+pub use events::{
+    EventKind, EventPoint, GroupSet, Hinge, HingeEvent, HingeGroup, Interval, Reading, Span,
+};
 
 /// Per-piece states of every section.
 #[derive(Clone, Debug)]
@@ -68,9 +70,9 @@ const CACHE_ENTRIES: usize = 1 << 20;
 /// What [`Reader::group_events`] reads of a piece, per hinge group.
 struct GroupSets {
     events: Vec<HingeEvent>,
-    accelerating: Vec<usize>,
-    constant_rate: Vec<usize>,
-    at_yield: Vec<usize>,
+    accelerating: GroupSet,
+    constant_rate: GroupSet,
+    at_yield: GroupSet,
     now_yield: Vec<SectionMode>,
     now_acc: Vec<SectionMode>,
 }
@@ -365,17 +367,9 @@ impl<'a> Reader<'a> {
         }
         if !self.flowing {
             // rigid (or moving without hinges) over the whole traced range
-            if let (Some(first), Some(last)) = (self.rigid.first(), self.rigid.last()) {
-                self.intervals.push(Interval {
-                    lambda_from: first.1,
-                    lambda_to: last.2,
-                    piece: first.0,
-                    pieces: spans(&self.rigid),
-                    rigid: true,
-                    accelerating: vec![],
-                    constant_rate: vec![],
-                    at_yield: vec![],
-                });
+            if let Some(last) = self.rigid.last() {
+                let iv = rigid_interval(&self.rigid, last.2);
+                self.intervals.push(iv);
             }
         }
         Reading {
@@ -461,20 +455,11 @@ impl<'a> Reader<'a> {
                 return;
             }
             self.flowing = true;
-            if let Some(first) = self.rigid.first() {
+            if !self.rigid.is_empty() {
                 // the path pivots inside the rigid phase of an indeterminate
                 // frame (redundant moments reaching yield): every piece up to
                 // the first flow
-                self.intervals.push(Interval {
-                    lambda_from: first.1,
-                    lambda_to: lambda,
-                    piece: first.0,
-                    pieces: spans(&self.rigid),
-                    rigid: true,
-                    accelerating: vec![],
-                    constant_rate: vec![],
-                    at_yield: vec![],
-                });
+                self.intervals.push(rigid_interval(&self.rigid, lambda));
                 self.rigid = Vec::new();
             }
         }
@@ -514,9 +499,9 @@ impl<'a> Reader<'a> {
         );
         let (prev_acc, prev_yield) = (&self.prev_acc, &self.prev_yield);
         let mut events = Vec::new();
-        let mut accelerating = Vec::new();
-        let mut constant_rate = Vec::new();
-        let mut at_yield = Vec::new();
+        let mut accelerating = GroupSet::new();
+        let mut constant_rate = GroupSet::new();
+        let mut at_yield = GroupSet::new();
         let mut now_yield = vec![None; ng];
         let mut now_acc = vec![None; ng];
         for g in 0..ng {
@@ -664,7 +649,7 @@ impl<'a> Reader<'a> {
             }
         } else {
             // kept for every interval: no spare capacity (for a travelling
-            // hinge the sets hold every hinge behind the front)
+            // hinge the sets hold every hinge behind the front: a run or two)
             accelerating.shrink_to_fit();
             constant_rate.shrink_to_fit();
             at_yield.shrink_to_fit();
@@ -702,6 +687,23 @@ pub fn read(frame: &Frame, system: &System, pieces: &[Piece], tolerance: f64) ->
         reader.push(i, p);
     }
     reader.finish()
+}
+
+/// The rigid interval over the pieces `rigid` (the reading's view `(piece,
+/// from, to)`, not empty) up to `lambda_to`: the whole rigid phase at the
+/// end of the reading, or up to the first flow.
+fn rigid_interval(rigid: &[(usize, f64, f64)], lambda_to: f64) -> Interval {
+    let first = rigid[0];
+    Interval {
+        lambda_from: first.1,
+        lambda_to,
+        piece: first.0,
+        pieces: spans(rigid),
+        rigid: true,
+        accelerating: GroupSet::new(),
+        constant_rate: GroupSet::new(),
+        at_yield: GroupSet::new(),
+    }
 }
 
 /// The spans of a run of the reading's view `(piece, from, to)`.

@@ -9,11 +9,11 @@ pub(super) fn activation(a: &Analysis, dir: &Path) -> Result<Vec<PathBuf>, Frame
     // rows: groups in order of their first appearance
     let mut rows: Vec<usize> = Vec::new();
     for iv in &a.reading.intervals {
-        for &g in iv
+        for g in iv
             .accelerating
             .iter()
-            .chain(&iv.constant_rate)
-            .chain(&iv.at_yield)
+            .chain(iv.constant_rate.iter())
+            .chain(iv.at_yield.iter())
         {
             if !rows.contains(&g) {
                 rows.push(g);

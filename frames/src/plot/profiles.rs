@@ -128,7 +128,7 @@ pub(super) fn profiles(
                     (&iv.accelerating, RGBColor(210, 40, 40)),
                     (&iv.constant_rate, RGBColor(40, 90, 200)),
                 ] {
-                    for &gi in set.iter() {
+                    for gi in set.iter() {
                         let node = a.reading.groups[gi].node;
                         chart.draw_series(std::iter::once(Circle::new(
                             moved(node),

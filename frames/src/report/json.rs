@@ -285,8 +285,14 @@ impl Analysis {
                     let with_moments = interval_sel.binary_search(&k).is_ok();
                     let sets = match hinge_sets {
                         HingeSets::Full => vec![
-                            ("accelerating", json!(self.group_nodes(&iv.accelerating))),
-                            ("constant_rate", json!(self.group_nodes(&iv.constant_rate))),
+                            (
+                                "accelerating",
+                                json!(self.group_nodes(&iv.accelerating.to_vec())),
+                            ),
+                            (
+                                "constant_rate",
+                                json!(self.group_nodes(&iv.constant_rate.to_vec())),
+                            ),
                         ],
                         HingeSets::Changes => {
                             let before = k.checked_sub(1).map(|j| &intervals[j]);
@@ -297,13 +303,13 @@ impl Analysis {
                                     "removed": self.group_nodes(&removed),
                                 })
                             };
-                            let acc = before.map(|b| &b.accelerating[..]);
-                            let cr = before.map(|b| &b.constant_rate[..]);
+                            let acc = before.map(|b| b.accelerating.to_vec());
+                            let cr = before.map(|b| b.constant_rate.to_vec());
                             vec![(
                                 "hinge_changes",
                                 json!({
-                                    "accelerating": change(&iv.accelerating, acc),
-                                    "constant_rate": change(&iv.constant_rate, cr),
+                                    "accelerating": change(&iv.accelerating.to_vec(), acc.as_deref()),
+                                    "constant_rate": change(&iv.constant_rate.to_vec(), cr.as_deref()),
                                 }),
                             )]
                         }

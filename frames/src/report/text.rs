@@ -7,23 +7,54 @@ use crate::analysis::Analysis;
 use crate::hinge::{EventKind, HingeEvent};
 use std::fmt::Write;
 
+/// A `fmt::Write` onto an `io::Write` that keeps the first I/O error (and
+/// writes nothing after it).
+struct IoText<'w, W: std::io::Write> {
+    w: &'w mut W,
+    err: Option<std::io::Error>,
+}
+
+impl<W: std::io::Write> Write for IoText<'_, W> {
+    fn write_str(&mut self, text: &str) -> std::fmt::Result {
+        if self.err.is_some() {
+            return Err(std::fmt::Error);
+        }
+        self.w.write_all(text.as_bytes()).map_err(|e| {
+            self.err = Some(e);
+            std::fmt::Error
+        })
+    }
+}
+
 impl Analysis {
     /// The readable report: the system, the table of critical `Lambda` with the
     /// hinges that form, then the intervals.
     pub fn to_text(&self) -> String {
         let mut s = String::new();
-        self.text_system(&mut s);
-        self.text_solver(&mut s);
-        self.text_breakpoints(&mut s);
-        self.text_intervals(&mut s);
-        self.text_time_end(&mut s);
-        self.text_targets(&mut s);
+        self.text_parts(&mut s);
         s
+    }
+
+    /// [`Self::to_text`] written to `w` line by line, not built whole (the
+    /// report of a large scene lists the hinge sets of every interval).
+    pub fn write_text(&self, w: &mut impl std::io::Write) -> std::io::Result<()> {
+        let mut a = IoText { w, err: None };
+        self.text_parts(&mut a);
+        a.err.map_or(Ok(()), Err)
+    }
+
+    fn text_parts(&self, s: &mut impl Write) {
+        self.text_system(s);
+        self.text_solver(s);
+        self.text_breakpoints(s);
+        self.text_intervals(s);
+        self.text_time_end(s);
+        self.text_targets(s);
     }
 
     /// The header: the scene, the size of system (9) and what it leaves
     /// out, the model and the yield surfaces.
-    fn text_system(&self, s: &mut String) {
+    fn text_system(&self, s: &mut impl Write) {
         let fr = &self.scene.frame;
         let sys = &self.system;
         let sz = sys.sizes();
@@ -82,7 +113,7 @@ impl Analysis {
 
     /// How the path was solved: method, certificate, warnings, the sign
     /// convention and the load history.
-    fn text_solver(&self, s: &mut String) {
+    fn text_solver(&self, s: &mut impl Write) {
         let info = &self.solution.info;
         let _ = writeln!(
             s,
@@ -144,7 +175,7 @@ impl Analysis {
     }
 
     /// The table of critical `Lambda` with the hinges that form and the events.
-    fn text_breakpoints(&self, s: &mut String) {
+    fn text_breakpoints(&self, s: &mut impl Write) {
         let _ = writeln!(s);
         let _ = writeln!(s, "critical Lambda   hinges and events");
         if self.reading.breakpoints.is_empty() {
@@ -213,7 +244,7 @@ impl Analysis {
 
     /// The intervals: the hinges accelerating, and the accelerations of
     /// the nodes with mass.
-    fn text_intervals(&self, s: &mut String) {
+    fn text_intervals(&self, s: &mut impl Write) {
         let fr = &self.scene.frame;
         let _ = writeln!(s);
         let _ = writeln!(
@@ -236,12 +267,12 @@ impl Analysis {
             let acc: Vec<String> = iv
                 .accelerating
                 .iter()
-                .map(|&g| self.group_label(g))
+                .map(|g| self.group_label(g))
                 .collect();
             let cr: Vec<String> = iv
                 .constant_rate
                 .iter()
-                .map(|&g| self.group_label(g))
+                .map(|g| self.group_label(g))
                 .collect();
             let _ = writeln!(
                 s,
@@ -285,7 +316,7 @@ impl Analysis {
     }
 
     /// The largest displacement at the end of the time response.
-    fn text_time_end(&self, s: &mut String) {
+    fn text_time_end(&self, s: &mut impl Write) {
         let fr = &self.scene.frame;
         let t = &self.response.time;
         if let Some(&t_end) = t.times.last() {
@@ -317,7 +348,7 @@ impl Analysis {
     }
 
     /// The targets: when each gap closes, with velocity and kinetic energy.
-    fn text_targets(&self, s: &mut String) {
+    fn text_targets(&self, s: &mut impl Write) {
         let fr = &self.scene.frame;
         if !self.targets.is_empty() {
             let _ = writeln!(s);
