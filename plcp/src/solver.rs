@@ -22,6 +22,7 @@ use crate::path::{Info, Path, Point, Status, Var};
 use crate::pivoting::{finish_lean, finish_path, run_path, start_phase, Engine, Recorder};
 use crate::scalar::Scalar;
 use crate::settings::{Method, Settings};
+use crate::tolerance::{FACTOR_KEPT_EPS, VALUES_KEPT_EPS};
 use faer::{Col, ColRef, MatRef};
 
 /// Repeated paths on one matrix `M`, each started where the last one ended.
@@ -424,23 +425,6 @@ impl<'a, T: Scalar> Solver<'a, T> {
         crate::trace::guard_residual(path);
     }
 }
-
-/// The end residual (in `eps`) up to which the next step of a [`Solver`]
-/// starts from the basic values it holds instead of solving for them.
-///
-/// On the MPC loop of `docs/performance.md` (n = 50, 1000 steps), against a
-/// loop that refactorises after every step (worst end residual 2.5e-15):
-/// the period of 50 pivots with a fresh solve each step differed by up to
-/// 7.0e-14 in z (relative) with worst residual 1.9e-14; this policy (8 and
-/// 64) by 3.2e-14 with worst residual 1.5e-14, at 8 % fewer instructions a
-/// step. (Kept values and no refactorisation below 1e3 eps: 20 % fewer,
-/// but residuals grew to 2.9e-14.)
-const VALUES_KEPT_EPS: f64 = 8.0;
-
-/// The end residual (in `eps`) up to which a [`Solver`] waives the
-/// periodic refactorisation for the pivots of a step (see
-/// [`VALUES_KEPT_EPS`]); above it, it refactorises at once.
-const FACTOR_KEPT_EPS: f64 = 64.0;
 
 /// Does the one-time work of a process that its first solve would
 /// otherwise pay, and returns whether the small solve it makes reached its end.

@@ -143,3 +143,35 @@ pub fn reduction_tie_factor<T: Scalar>(cond_f: f64, tie_tol_eps: f64) -> f64 {
         cap
     }
 }
+
+// ---------------------------------------------------------------------------
+// The drift control of the MPC loop ([`crate::Solver`]; issue 20)
+// ---------------------------------------------------------------------------
+
+/// The end residual, in `eps`, up to which the next step of a
+/// [`crate::Solver`] starts from the basic values its engine holds instead
+/// of solving for them with the factorisation (when the step's data continue
+/// the last end: `q_k = q_{k-1} + d_{k-1}` to one rounding of the sum).
+///
+/// The end residual decides because it is measured on the data every step
+/// anyway ([`crate::residual::residual_parts`]'s rule): the drift of held
+/// values and of an updated factorisation shows there first. Measured on
+/// the MPC loop of `docs/performance.md` (n = 50, 1000 steps, 756 pivots),
+/// against a loop that refactorises after every step (worst end residual
+/// 2.5e-15): the earlier fixed period of 50 pivots with a fresh values solve
+/// each step differed by up to 7.0e-14 in z (relative) with worst residual
+/// 1.9e-14; this policy (8 here and 64 in [`FACTOR_KEPT_EPS`]) by 3.2e-14
+/// with worst residual 1.5e-14, at 8 % fewer instructions a step. Looser
+/// thresholds drift: kept values with no refactorisation below 1e3 `eps`
+/// saved 20 % of the instructions but let residuals grow to 2.9e-14
+/// (`FACTOR_KEPT_EPS = 16`: 71.6 k instructions a step, 64: 70.6 k). Most
+/// end residuals of that loop are 2..18 `eps`, so the values solve still
+/// runs in most steps.
+pub const VALUES_KEPT_EPS: f64 = 8.0;
+
+/// The end residual, in `eps`, up to which a [`crate::Solver`] waives the
+/// periodic refactorisation for the pivots of a step (up to a cap of 1000
+/// pivots); above it, it refactorises at once (see [`VALUES_KEPT_EPS`] for
+/// the measurements). With an explicit [`crate::Settings::refactor_period`]
+/// the user's period holds instead.
+pub const FACTOR_KEPT_EPS: f64 = 64.0;
