@@ -162,6 +162,13 @@ pub(crate) struct Engine<'a, T: Scalar> {
     col_buf: Col<T>,
     a_buf: Col<T>,
     bx_buf: Col<T>,
+    /// The variable whose column `B^{-1} a_v` `col_buf` holds, with the
+    /// pivot and refactorisation counts it was solved at: set where a trace
+    /// reaches its end (the driver's entering column), so that
+    /// [`Self::settle`] pivots it in without solving for it again while the
+    /// basis is the same (the counts unchanged); cleared by what writes
+    /// `col_buf` or changes `d` (the values solve, a new trace, new data).
+    col_of: Option<(Var, usize, usize)>,
     /// The fingerprints of the bases of the current trace ([`cycle`]).
     cycle: cycle::CycleGuard,
 }
@@ -283,6 +290,7 @@ impl<'a, T: Scalar> Engine<'a, T> {
             col_buf: Col::zeros(0),
             a_buf: Col::zeros(0),
             bx_buf: Col::zeros(0),
+            col_of: None,
             cycle: cycle::CycleGuard::default(),
         };
         for (r, v) in basis.iter().enumerate() {
@@ -358,6 +366,7 @@ impl<'a, T: Scalar> Engine<'a, T> {
         let mut rhs = Self::take_buf(&mut self.a_buf);
         self.rhs_into(&mut rhs);
         let mut xnew = Self::take_buf(&mut self.col_buf);
+        self.col_of = None;
         self.factor.solve_into(&rhs, &mut xnew);
         self.a_buf = rhs;
         // snap tiny negatives of sign-constrained basics (drift) to zero
@@ -400,6 +409,7 @@ impl<'a, T: Scalar> Engine<'a, T> {
         // is skipped (its drift correction is the solver's measured policy,
         // see `defer_refactor`)
         let continues = core::mem::take(&mut self.values_trusted) && self.continues(q, d, lambda);
+        self.col_of = None;
         self.q.as_mut().copy_from(q);
         self.d.as_mut().copy_from(d);
         self.data_max = Self::data_max(&self.q, &self.d);

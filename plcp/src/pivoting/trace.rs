@@ -44,6 +44,7 @@ impl<'a, T: Scalar> Engine<'a, T> {
             return TraceEnd::Stalled("internal: trace must start with L nonbasic".into());
         }
         self.cycle.start(self.basis_fingerprint());
+        self.col_of = None;
         loop {
             if self.pivots >= self.max_pivots || crate::observe::stop_requested() {
                 return TraceEnd::PivotLimit;
@@ -111,6 +112,8 @@ impl<'a, T: Scalar> Engine<'a, T> {
                         self.x[l] = end;
                     }
                     self.col_buf = col;
+                    // the driver's column on this basis, for `settle`
+                    self.col_of = Some((driver, self.pivots, self.refactorisations));
                     return TraceEnd::Reached {
                         driver,
                         theta: theta_end,
@@ -343,7 +346,9 @@ impl<'a, T: Scalar> Engine<'a, T> {
 
     /// After a phase ended with `driver` at `theta` and `L` basic: make the basis
     /// complementary again by pivoting the driver in for `L` (which becomes nonbasic
-    /// at its current value).
+    /// at its current value). The driver's column is the one the trace
+    /// ended with when it is still at hand (`col_of`: the same basis, and
+    /// refined as the trace refines entering columns), else solved for.
     pub(crate) fn settle(&mut self, driver: Var, theta: T) -> Result<(), String> {
         if driver == Var::Lambda {
             return Ok(());
@@ -352,7 +357,10 @@ impl<'a, T: Scalar> Engine<'a, T> {
             return Ok(());
         };
         let mut col = Self::take_buf(&mut self.col_buf);
-        self.column_into(driver, &mut col);
+        let held = Some((driver, self.pivots, self.refactorisations));
+        if self.col_of.take() != held || col.nrows() != self.dim {
+            self.column_into(driver, &mut col);
+        }
         let done = self.pivot(l, driver, &col, theta);
         self.col_buf = col;
         done
