@@ -208,6 +208,14 @@ pub(crate) trait BasisFactor<T: Scalar> {
     ) {
         (*sol, *bx) = self.solve_and_apply(m, d, p, basis, a, x);
     }
+    /// `B^{-1} a` and `B^{-1} b` into `out_a`, `out_b` (resized to `dim`
+    /// if they are not): representations that can override it solve both in
+    /// one sweep (the block basis: two-column products; the results then
+    /// differ from [`Self::solve_into`]'s in the rounding).
+    fn solve2_into(&self, a: &Col<T>, b: &Col<T>, out_a: &mut Col<T>, out_b: &mut Col<T>) {
+        self.solve_into(a, out_a);
+        self.solve_into(b, out_b);
+    }
     /// `(B^{-1} a, B^{-1} b)`, consuming `a` and `b`: representations that
     /// can override it to solve both in one sweep, in place (each result as
     /// from its own [`Self::solve`]).

@@ -169,6 +169,9 @@ pub(crate) struct Engine<'a, T: Scalar> {
     /// basis is the same (the counts unchanged); cleared by what writes
     /// `col_buf` or changes `d` (the values solve, a new trace, new data).
     col_of: Option<(Var, usize, usize)>,
+    /// The basic values of [`Self::values_and_lambda_column`] before they
+    /// are snapped into `x` (a buffer kept between steps).
+    x_buf: Col<T>,
     /// The fingerprints of the bases of the current trace ([`cycle`]).
     cycle: cycle::CycleGuard,
 }
@@ -291,6 +294,7 @@ impl<'a, T: Scalar> Engine<'a, T> {
             a_buf: Col::zeros(0),
             bx_buf: Col::zeros(0),
             col_of: None,
+            x_buf: Col::zeros(0),
             cycle: cycle::CycleGuard::default(),
         };
         for (r, v) in basis.iter().enumerate() {
@@ -369,6 +373,38 @@ impl<'a, T: Scalar> Engine<'a, T> {
         self.col_of = None;
         self.factor.solve_into(&rhs, &mut xnew);
         self.a_buf = rhs;
+        self.set_values(&xnew);
+        self.col_buf = xnew;
+    }
+
+    /// [`Self::values_from_factor`] and the column of `L` (`B^{-1} a_L`,
+    /// left in `col_buf` for the trace's first step, `col_of`) in one
+    /// two-column solve ([`BasisFactor::solve2_into`]): the solver's step
+    /// after its data changed (issue 20). Only where the trace would not
+    /// refine the column (`refine_columns` off).
+    fn values_and_lambda_column(&mut self) {
+        if self.refine_columns {
+            self.values_from_factor();
+            return;
+        }
+        let mut rhs = Self::take_buf(&mut self.a_buf);
+        self.rhs_into(&mut rhs);
+        let mut a_l = Self::take_buf(&mut self.bx_buf);
+        var_column_into(self.m, &self.d, self.p, Var::Lambda, &mut a_l);
+        let mut xnew = Self::take_buf(&mut self.x_buf);
+        let mut col = Self::take_buf(&mut self.col_buf);
+        self.factor.solve2_into(&rhs, &a_l, &mut xnew, &mut col);
+        self.a_buf = rhs;
+        self.bx_buf = a_l;
+        self.set_values(&xnew);
+        self.x_buf = xnew;
+        self.col_buf = col;
+        self.col_of = Some((Var::Lambda, self.pivots, self.refactorisations));
+    }
+
+    /// `x` from freshly solved values `xnew`, tiny negatives of
+    /// sign-constrained basics (drift) snapped to zero.
+    fn set_values(&mut self, xnew: &Col<T>) {
         // snap tiny negatives of sign-constrained basics (drift) to zero
         let scale = self.xscale();
         for r in 0..self.dim {
@@ -381,7 +417,6 @@ impl<'a, T: Scalar> Engine<'a, T> {
             }
             self.x[r] = v;
         }
-        self.col_buf = xnew;
         if let Some(l) = self.row_of(Var::Lambda) {
             // L stays the path's exact parameter; the recomputed value measures drift
             self.x[l] = self.lambda;
@@ -426,7 +461,7 @@ impl<'a, T: Scalar> Engine<'a, T> {
         self.refinements = 0;
         self.residual_owed = false;
         if !continues {
-            self.values_from_factor();
+            self.values_and_lambda_column();
         }
         self.infeasibility()
     }

@@ -44,7 +44,8 @@ impl<'a, T: Scalar> Engine<'a, T> {
             return TraceEnd::Stalled("internal: trace must start with L nonbasic".into());
         }
         self.cycle.start(self.basis_fingerprint());
-        self.col_of = None;
+        // a column solved ahead for the first step (`retarget`), if any
+        let mut held = self.col_of.take();
         loop {
             if self.pivots >= self.max_pivots || crate::observe::stop_requested() {
                 return TraceEnd::PivotLimit;
@@ -57,8 +58,13 @@ impl<'a, T: Scalar> Engine<'a, T> {
             // the entering column, in the engine's buffer (put back at the
             // end of the step)
             let mut col = Self::take_buf(&mut self.col_buf);
-            if let Err(msg) = self.entering_column(driver, rec.as_deref_mut(), &mut col) {
-                return TraceEnd::IllConditioned(msg);
+            let ahead = held.take() == Some((driver, self.pivots, self.refactorisations))
+                && !self.residual_owed
+                && col.nrows() == self.dim;
+            if !ahead {
+                if let Err(msg) = self.entering_column(driver, rec.as_deref_mut(), &mut col) {
+                    return TraceEnd::IllConditioned(msg);
+                }
             }
             let colmax = col_max_abs(&col);
             let rate = match driver {

@@ -137,6 +137,8 @@ pub(crate) struct BlockInverse<T: Scalar> {
     /// `solve_and_apply` (first `k` rows) and its result `(G y_M, G x_M)`.
     rhs2: RefCell<Mat<T>>,
     prod2: RefCell<Mat<T>>,
+    /// `S^{-1}` times the two right-hand sides of [`BasisFactor::solve2_into`].
+    y2: RefCell<Mat<T>>,
     /// `a_v` of [`BasisFactor::column_into`].
     a: RefCell<Col<T>>,
 }
@@ -194,6 +196,7 @@ impl<T: Scalar> BlockInverse<T> {
             acc: RefCell::new((Vec::new(), Vec::new())),
             rhs2: RefCell::new(Mat::zeros(0, 0)),
             prod2: RefCell::new(Mat::zeros(0, 0)),
+            y2: RefCell::new(Mat::zeros(0, 0)),
             a: RefCell::new(Col::zeros(0)),
         }
     }
@@ -464,6 +467,70 @@ impl<T: Scalar> BasisFactor<T> for BlockInverse<T> {
                 Slot::Matrix(b) => ym[b],
                 Slot::Identity(i) => a[i] - gy[i],
             };
+        }
+    }
+
+    fn solve2_into(&self, a: &Col<T>, b: &Col<T>, out_a: &mut Col<T>, out_b: &mut Col<T>) {
+        // the pending update applied on its own pass, then `S^{-1} [a_R b_R]`
+        // and `G [y_a y_b]` as two-column products: as many passes over
+        // `S^{-1}` and `G` as one solve after an update, fewer than two
+        // (the solver's values and `L`'s column, issue 20)
+        let (k, dim) = (self.k, self.dim);
+        if self.refine {
+            self.solve_into(a, out_a);
+            self.solve_into(b, out_b);
+            return;
+        }
+        self.flush(None);
+        self.refined.set(false);
+        let mut rhs = self.rhs2.borrow_mut();
+        let mut prod = self.prod2.borrow_mut();
+        let mut y = self.y2.borrow_mut();
+        if prod.nrows() != dim {
+            *rhs = Mat::zeros(dim, 2);
+            *prod = Mat::zeros(dim, 2);
+        }
+        if y.nrows() != dim {
+            *y = Mat::zeros(dim, 2);
+        }
+        for j in 0..k {
+            let i = self.rows[j];
+            rhs[(j, 0)] = a[i];
+            rhs[(j, 1)] = b[i];
+        }
+        let sinv = self.sinv.borrow();
+        matmul_par_into(
+            y.as_mut().subrows_mut(0, k),
+            sinv.as_ref().submatrix(0, 0, k, k),
+            rhs.as_ref().subrows(0, k),
+            self.par(k * k),
+        );
+        matmul_par_into(
+            prod.as_mut(),
+            self.g.as_ref().subcols(0, k),
+            y.as_ref().subrows(0, k),
+            self.par(dim * k),
+        );
+        for out in [&mut *out_a, &mut *out_b] {
+            if out.nrows() != dim {
+                *out = Col::zeros(dim);
+            }
+        }
+        let (ga, gb) = (col_of(prod.as_ref(), 0), col_of(prod.as_ref(), 1));
+        let (ya, yb) = (col_of(y.as_ref(), 0), col_of(y.as_ref(), 1));
+        let (a, b) = (slice_of(a), slice_of(b));
+        let (oa, ob) = (slice_mut_of(out_a), slice_mut_of(out_b));
+        for ((sa, sb), slot) in oa.iter_mut().zip(ob.iter_mut()).zip(&self.slots) {
+            match *slot {
+                Slot::Matrix(c) => {
+                    *sa = ya[c];
+                    *sb = yb[c];
+                }
+                Slot::Identity(i) => {
+                    *sa = a[i] - ga[i];
+                    *sb = b[i] - gb[i];
+                }
+            }
         }
     }
 
