@@ -522,8 +522,7 @@ mod tests {
                     };
                     T::from_f64(v)
                 };
-                let col =
-                    |pick: &mut dyn FnMut(usize) -> T| faer::Col::<T>::from_fn(n, |i| pick(i));
+                let col = |pick: &mut dyn FnMut(usize) -> T| faer::Col::<T>::from_fn(n, &mut *pick);
                 let (z, dz, w, dw) = (
                     col(&mut pick),
                     col(&mut pick),
