@@ -406,16 +406,16 @@ impl<'a, T: Scalar> Engine<'a, T> {
     /// sign-constrained basics (drift) snapped to zero.
     fn set_values(&mut self, xnew: &Col<T>) {
         // snap tiny negatives of sign-constrained basics (drift) to zero
-        let scale = self.xscale();
-        for r in 0..self.dim {
-            let mut v = xnew[r];
-            if is_comp(self.basis[r]) && v < T::zero() && -v <= self.tie_tol * scale {
-                v = T::zero();
-            }
-            if matches!(self.basis[r], Var::Artificial(_)) && v.abs() <= self.tie_tol * scale {
-                v = T::zero();
-            }
-            self.x[r] = v;
+        let tol = self.tie_tol * self.xscale();
+        // (over slices: the MPC step's values pass, without index checks)
+        let x = col_slice_mut(&mut self.x);
+        for ((x, &v), var) in x.iter_mut().zip(col_slice(xnew)).zip(&self.basis) {
+            let snap = match var {
+                Var::W(_) | Var::Z(_) => v < T::zero() && -v <= tol,
+                Var::Artificial(_) => v.abs() <= tol,
+                _ => false,
+            };
+            *x = if snap { T::zero() } else { v };
         }
         if let Some(l) = self.row_of(Var::Lambda) {
             // L stays the path's exact parameter; the recomputed value measures drift
@@ -506,6 +506,19 @@ impl<'a, T: Scalar> Engine<'a, T> {
     pub(crate) fn infeasibility(&self) -> Option<String> {
         let scale = self.xscale();
         let tol = self.tie_tol * scale;
+        // the common answer (feasible) in one pass over slices; the
+        // offending row, if any, is then found again for its message
+        let fine = col_slice(&self.x)
+            .iter()
+            .zip(&self.basis)
+            .all(|(&x, v)| match v {
+                Var::W(_) | Var::Z(_) => x.is_finite() && x >= -tol,
+                Var::Artificial(_) => x.is_finite() && x.abs() <= tol,
+                _ => x.is_finite(),
+            });
+        if fine {
+            return None;
+        }
         (0..self.dim).find_map(|r| {
             let v = self.basis[r];
             let x = self.x[r];
@@ -526,8 +539,9 @@ impl<'a, T: Scalar> Engine<'a, T> {
         if self.row_of(Var::Lambda).is_some() {
             out.as_mut().copy_from(self.q.as_ref());
         } else {
-            for i in 0..self.dim {
-                out[i] = self.q[i] + self.lambda * self.d[i];
+            let (q, d, l) = (col_slice(&self.q), col_slice(&self.d), self.lambda);
+            for ((o, &q), &d) in col_slice_mut(out).iter_mut().zip(q).zip(d) {
+                *o = q + l * d;
             }
         }
     }
