@@ -438,6 +438,51 @@ mod tests {
     use super::*;
     use faer::{col, mat, Col};
 
+    /// Several points measured in one sweep give the bits of measuring each
+    /// alone: dense and sparse `M`, mixed form, points whose nonzeros differ
+    /// (a column skipped by one point and not by the other), a negative `z`.
+    #[test]
+    fn residuals_of_several_points_match_single_calls() {
+        let m = mat![
+            [2.0, 1.0, 0.0, -1.0],
+            [1.0, 3.0, 0.5, 0.0],
+            [0.0, 0.5, 4.0, 1e-3],
+            [1.0, 0.0, -2.0, 5.0]
+        ];
+        let (q, d) = (col![1.0, 0.5, -2.0, 0.25], col![-1.0, -0.25, 0.0, 3.0]);
+        let dense = Plcp::mixed(m.as_ref(), q.as_ref(), d.as_ref(), 1).expect("valid");
+        let sparse = Plcp::mixed_sparse(
+            crate::matrix::Csc::from_dense(m.as_ref()),
+            q.as_ref(),
+            d.as_ref(),
+            1,
+        )
+        .expect("valid");
+        let pt = |lambda: f64, u: f64, z: [f64; 3], w: [f64; 3]| Point {
+            lambda,
+            u: col![u],
+            z: Col::from_fn(3, |i| z[i]),
+            w: Col::from_fn(3, |i| w[i]),
+        };
+        let a = pt(0.5, 0.3, [0.0, 1.25, 2.0], [0.75, 0.0, 0.0]);
+        let b = pt(1.7, 0.0, [1e-9, 0.0, -3.0], [0.0, 2.5, 1e-12]);
+        let c = pt(-0.2, 1.1, [0.0, 0.0, 0.0], [0.1, 0.2, 0.3]);
+        let bits = |r: Residual| {
+            [
+                r.equation.to_bits(),
+                r.feasibility.to_bits(),
+                r.complementarity.to_bits(),
+            ]
+        };
+        for problem in [&dense, &sparse] {
+            let [ra, rb, rc] = residuals(problem, [&a, &b, &c]);
+            assert_eq!(bits(ra), bits(residual(problem, &a)));
+            assert_eq!(bits(rb), bits(residual(problem, &b)));
+            assert_eq!(bits(rc), bits(residual(problem, &c)));
+            assert!(rb.feasibility > 0.0 && ra.equation > 0.0);
+        }
+    }
+
     /// The allocation-free sign measure of a segment's ends gives the bits of
     /// measuring the evaluated points, clamped or not.
     #[test]
