@@ -198,14 +198,32 @@ pub(crate) fn to_nodes(frame: &Frame, system: &System, q: &[f64]) -> Vec<[f64; 6
 
 /// The residual of the mixed PLCP (`system.plcp::<f64>(None)`) at `lambda` on a piece.
 pub fn residual_at(problem: &plcp::Plcp<f64>, piece: &Piece, lambda: f64) -> Residual {
-    let col = |v: Vec<f64>| Col::from_fn(v.len(), |i| v[i]);
-    let point = Point {
-        lambda,
-        z: col(piece.z(lambda)),
-        w: col(piece.w(lambda)),
-        u: col(piece.u(lambda)),
+    plcp::residual::residual(problem, &point_at(piece, lambda))
+}
+
+/// [`residual_at`] at the piece's start and at its representative point
+/// ([`Piece::representative`]), in one sweep over `M`
+/// ([`plcp::residual::residuals`]: the same bits as two calls).
+pub fn residuals_of_piece(problem: &plcp::Plcp<f64>, piece: &Piece) -> (Residual, Residual) {
+    let from = point_at(piece, piece.lambda_from);
+    let mid = point_at(piece, piece.representative());
+    let [a, b] = plcp::residual::residuals(problem, [&from, &mid]);
+    (a, b)
+}
+
+/// The piece's point at `lambda`, the values as [`Piece::z`] (`from + slope
+/// (lambda - lambda_from)`) written straight into the columns.
+fn point_at(piece: &Piece, lambda: f64) -> Point<f64> {
+    let dl = lambda - piece.lambda_from;
+    let col = |from: &[f64], slope: &[f64]| {
+        Col::from_fn(from.len().min(slope.len()), |i| from[i] + slope[i] * dl)
     };
-    plcp::residual::residual(problem, &point)
+    Point {
+        lambda,
+        z: col(&piece.z_from, &piece.dz),
+        w: col(&piece.w_from, &piece.dw),
+        u: col(&piece.u_from, &piece.du),
+    }
 }
 
 /// The affine accelerations of an interval (zero in the rigid phase).
@@ -333,8 +351,8 @@ pub fn build(
                 && p.lambda_from < iv.lambda_to.max(iv.lambda_from + f64::MIN_POSITIVE)
         }) {
             if let Some(problem) = &problem {
-                res = res.max(residual_at(problem, p, p.lambda_from));
-                res = res.max(residual_at(problem, p, p.representative()));
+                let (from, mid) = residuals_of_piece(problem, p);
+                res = res.max(from).max(mid);
             }
         }
         intervals.push(IntervalResponse {

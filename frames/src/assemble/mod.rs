@@ -324,4 +324,29 @@ impl System {
             _ => *f == MemberForce::Axial(e) || *f == MemberForce::Torque(e),
         })
     }
+
+    /// [`Self::second_force_index`] of every section, in one pass over the
+    /// forces (each element's first matching force, as `position` finds
+    /// it): a report reading every section costs `O(forces + sections)`
+    /// rather than their product (at 1000 elements the JSON spent 0.58 G
+    /// instructions in the searches).
+    pub fn second_force_indices(&self) -> Vec<Option<usize>> {
+        let elements = self.sections.iter().map(|s| s.element + 1).max();
+        let mut by_element: Vec<Option<usize>> = vec![None; elements.unwrap_or(0)];
+        for (k, f) in self.forces.iter().enumerate() {
+            let e = match (self.model, f) {
+                (Model::Space, MemberForce::Torque(e)) => *e,
+                (Model::Space, _) => continue,
+                (_, MemberForce::Axial(e) | MemberForce::Torque(e)) => *e,
+                _ => continue,
+            };
+            if let Some(slot) = by_element.get_mut(e) {
+                slot.get_or_insert(k);
+            }
+        }
+        self.sections
+            .iter()
+            .map(|s| by_element[s.element])
+            .collect()
+    }
 }

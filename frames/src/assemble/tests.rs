@@ -63,6 +63,34 @@ fn sparse_blocks_equal_the_dense_assembly_on_every_scene() {
     assert!(checked >= 40, "{checked}");
 }
 
+/// The second forces of all sections at once are the ones found section by
+/// section, on every scene (planar, grillage, space; left out or not).
+#[test]
+fn second_force_indices_match_the_search_on_every_scene() {
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../scenes");
+    let (mut checked, mut found) = (0, 0);
+    for dir in [root.clone(), root.join("pipe-whip"), root.join("stiff")] {
+        for e in std::fs::read_dir(dir).unwrap() {
+            let path = e.unwrap().path();
+            if path.extension().is_none_or(|x| x != "toml") {
+                continue;
+            }
+            let scene = Scene::from_file(&path).unwrap();
+            for leave_out in [true, false] {
+                let sys = System::assemble_with(&scene.frame, leave_out);
+                let all = sys.second_force_indices();
+                assert_eq!(all.len(), sys.sections.len());
+                for (k, &idx) in all.iter().enumerate() {
+                    assert_eq!(idx, sys.second_force_index(k), "{}", path.display());
+                    found += usize::from(idx.is_some());
+                }
+                checked += 1;
+            }
+        }
+    }
+    assert!(checked >= 40 && found > 0, "{checked} {found}");
+}
+
 fn scene(src: &str) -> Scene {
     Scene::from_toml(src, "t.toml").unwrap()
 }

@@ -527,12 +527,13 @@ impl Analysis {
         let fr = &self.scene.frame;
         let nb = self.system.coordinates.len();
         let u0 = piece.u(0.0);
+        let second = self.system.second_force_indices();
         let mut out = Map::new();
         for m in &fr.members {
             let vals: Vec<Value> = m
                 .elements
                 .clone()
-                .map(|e| match self.system.second_force_index(2 * e) {
+                .map(|e| match second[2 * e] {
                     Some(r) => {
                         let (b, s) = (u0[nb + r], piece.du[nb + r]);
                         match lambda {

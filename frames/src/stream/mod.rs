@@ -58,7 +58,7 @@ use crate::integrate::{schedule, METHOD};
 use crate::model::{History, Scene};
 use crate::report::{MomentPick, NodePick, OutputSelection};
 use crate::response::{
-    self, residual_at, to_nodes, IntervalResponse, MomentDiagram, Response, TimeResponse,
+    self, residuals_of_piece, to_nodes, IntervalResponse, MomentDiagram, Response, TimeResponse,
 };
 use crate::solve::{self, Piece};
 use plcp::{Control, Residual};
@@ -410,12 +410,11 @@ fn first_pass(
             single.piece(k, &p, &reader);
         }
         ranges.push((p.lambda_from, p.lambda_to));
-        residuals.push(problem.as_ref().map(|problem| {
-            (
-                residual_at(problem, &p, p.lambda_from),
-                residual_at(problem, &p, p.representative()),
-            )
-        }));
+        residuals.push(
+            problem
+                .as_ref()
+                .map(|problem| residuals_of_piece(problem, &p)),
+        );
         Control::Continue
     })?;
     Ok(FirstPass {

@@ -342,19 +342,24 @@ impl<T: Scalar> BasisFactor<T> for SparseLu<T> {
                         .try_as_col_major()
                         .expect("a column is contiguous")
                         .as_slice();
-                    let mut row = Col::<T>::zeros(dim);
+                    // the row's largest entry taken as it is gathered (the
+                    // same entries in the same order: the same maximum)
+                    let mut big = T::zero();
+                    let mut row = match factor {
+                        Some(f) => Col::<T>::from_fn(dim, |i| {
+                            let v = src[f.row_inv[i]];
+                            big = big.max(v.abs());
+                            v
+                        }),
+                        None => Col::<T>::from_fn(dim, |i| {
+                            let v = src[i];
+                            big = big.max(v.abs());
+                            v
+                        }),
+                    };
                     let out = col_slice(&mut row);
-                    match factor {
-                        Some(f) => {
-                            for (o, &p) in out.iter_mut().zip(&f.row_inv) {
-                                *o = src[p];
-                            }
-                        }
-                        None => out.copy_from_slice(src),
-                    }
                     // entries at the rounding level of the row are zeros of the
                     // exact inverse (the lexicographic rule compares them exactly)
-                    let big = out.iter().fold(T::zero(), |a, v| a.max(v.abs()));
                     let tol = T::from_f64(ROW_NOISE_EPS) * T::eps() * big;
                     for o in out.iter_mut() {
                         if o.abs() <= tol {

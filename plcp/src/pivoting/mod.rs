@@ -156,6 +156,9 @@ pub(crate) struct Engine<'a, T: Scalar> {
     /// (two vectors of `p + n` wide values each time were a tenth of the
     /// trace in page faults and zeroing).
     wide_acc: RefCell<WideAccumulators<T>>,
+    /// `B x` and the row scales of `plain_residual_into`, kept between
+    /// pivots as `wide_acc` (`refine.rs`).
+    plain_acc: RefCell<(Vec<T>, Vec<T>)>,
     /// Buffers of length `p + n` kept between pivots (the entering column,
     /// the column `a_v` or right-hand side solved for, `B x`): a pivot
     /// allocates none (see [`crate::basis::BasisFactor::solve_into`]).
@@ -289,6 +292,7 @@ impl<'a, T: Scalar> Engine<'a, T> {
             tie_tol: T::from_f64(settings.tie_tol_eps) * T::eps(),
             residual_owed: false,
             wide_acc: RefCell::new((Vec::new(), Vec::new())),
+            plain_acc: RefCell::new((Vec::new(), Vec::new())),
             // allocated by their first use (see `take_buf`)
             col_buf: Col::zeros(0),
             a_buf: Col::zeros(0),

@@ -113,19 +113,33 @@ impl<'a, T: Scalar> Engine<'a, T> {
                 None => self.factor.solve(r.as_ref().expect("a residual")),
             };
             self.refinements += 1;
+            // over slices, the row of L (kept exact) cut out: the same
+            // entries in the same order as a loop that skips it
+            let dim = self.dim;
+            let (lo, hi) = match l {
+                Some(l) => (l, l + 1),
+                None => (dim, dim),
+            };
             let (mut dnorm, mut xnorm) = (0.0f64, 0.0f64);
-            for k in 0..self.dim {
-                if Some(k) != l {
-                    dnorm = dnorm.max(dx[k].to_f64().abs());
-                    xnorm = xnorm.max(self.x[k].to_f64().abs());
+            {
+                let (dxs, xs) = (&col_slice(&dx)[..dim], &col_slice(&self.x)[..dim]);
+                for range in [0..lo, hi..dim] {
+                    for (d, x) in dxs[range.clone()].iter().zip(&xs[range]) {
+                        dnorm = dnorm.max(d.to_f64().abs());
+                        xnorm = xnorm.max(x.to_f64().abs());
+                    }
                 }
             }
             if !dnorm.is_finite() || dnorm >= 0.5 * last {
                 break;
             }
-            for k in 0..self.dim {
-                if Some(k) != l {
-                    self.x[k] += dx[k];
+            {
+                let dxs = &col_slice(&dx)[..dim];
+                let xs = &mut col_slice_mut(&mut self.x)[..dim];
+                for range in [0..lo, hi..dim] {
+                    for (x, &d) in xs[range.clone()].iter_mut().zip(&dxs[range]) {
+                        *x += d;
+                    }
                 }
             }
             last = dnorm;
@@ -135,26 +149,41 @@ impl<'a, T: Scalar> Engine<'a, T> {
                 // working precision measures it as it measures points
                 // (`crate::residual`: within a few roundings of the row's
                 // largest term, the scale it is reported against)
-                measured = Some(self.plain_residual(&self.x));
+                measured = None;
                 break;
             }
             let (rn, bx, big) = self.wide_residual(&self.x, None);
             r = Some(rn);
             measured = Some((bx, big));
         }
-        let (bx, big) = measured.unwrap_or_else(|| self.plain_residual(&self.x));
-        // relative to the terms of each row as well (a row whose terms cancel
-        // to a small B x keeps the rounding of its largest term)
-        self.residual_of_scaled(&bx, &self.x, Some(&big))
+        match measured {
+            // relative to the terms of each row as well (a row whose terms
+            // cancel to a small B x keeps the rounding of its largest term)
+            Some((bx, big)) => self.residual_of_scaled(&bx, &self.x, Some(&big)),
+            None => self.plain_residual_measured(),
+        }
+    }
+
+    /// `residual_of_scaled` of [`Self::plain_residual_into`] of the current values
+    /// without allocating: `B x` and the row scales accumulated in the
+    /// engine's buffers (`plain_acc`), the same operations in the same order.
+    fn plain_residual_measured(&self) -> Residual {
+        let mut scratch = self.plain_acc.borrow_mut();
+        let (bx, big) = &mut *scratch;
+        self.plain_residual_into(&self.x, bx, big);
+        self.residual_of_rows(bx, &self.x, Some(big))
     }
 
     /// `B x` in the working precision and `max_j abs(B_ij x_j)` per row, in
-    /// one pass over the basic columns.
-    pub(super) fn plain_residual(&self, x: &Col<T>) -> (Col<T>, Col<T>) {
+    /// one pass over the basic columns, into `bx` and `big` (cleared and
+    /// zeroed to length `p + n` first).
+    fn plain_residual_into(&self, x: &Col<T>, bx: &mut Vec<T>, big: &mut Vec<T>) {
         let dim = self.dim;
-        let mut bx_col: Col<T> = Col::zeros(dim);
-        let mut big_col: Col<T> = Col::zeros(dim);
-        let (bx, big) = (col_slice_mut(&mut bx_col), col_slice_mut(&mut big_col));
+        bx.clear();
+        bx.resize(dim, T::zero());
+        big.clear();
+        big.resize(dim, T::zero());
+        let (bx, big) = (&mut bx[..], &mut big[..]);
         let (m, p) = (self.m, self.p);
         // the column of a matrix variable is -M[:, j] (of L: -d)
         for (k, b) in self.basis.iter().enumerate() {
@@ -175,7 +204,6 @@ impl<'a, T: Scalar> Engine<'a, T> {
                 Var::Artificial(i) => add(i, -T::one()),
             }
         }
-        (bx_col, big_col)
     }
 
     /// `r = rhs - B x` accumulated in [`Scalar::Wide`] and rounded once,
@@ -367,27 +395,51 @@ impl<'a, T: Scalar> Engine<'a, T> {
         x: &Col<T>,
         big: Option<&Col<T>>,
     ) -> Residual {
+        self.residual_of_rows(col_slice(bx), x, big.map(col_slice))
+    }
+
+    /// [`Self::residual_of_scaled`] on slices.
+    fn residual_of_rows(&self, bx: &[T], x: &Col<T>, big: Option<&[T]>) -> Residual {
         let mut eq = 0.0f64;
         // rows with r <= bound * s cannot raise eq (bound a hair below eq,
         // far beyond the rounding of r / s): the division only where one may
         let mut bound = T::zero();
         let l_nonbasic = self.row_of(Var::Lambda).is_none();
-        let (q, d, bx) = (col_slice(&self.q), col_slice(&self.d), col_slice(bx));
-        let big = big.map(col_slice);
-        for i in 0..self.dim {
-            let ld = self.lambda * d[i];
+        let dim = self.dim;
+        let (q, d, bx) = (
+            &col_slice(&self.q)[..dim],
+            &col_slice(&self.d)[..dim],
+            &bx[..dim],
+        );
+        let big = big.map(|b| &b[..dim]);
+        // one row's measure; the loop below is written out per case (the
+        // branches on `l_nonbasic` and `big` out of it), the same operations
+        let mut row = |q: T, d: T, bx: T, big: Option<T>| {
+            let ld = self.lambda * d;
             // the basic right-hand side (see Self::rhs)
-            let rhs = if l_nonbasic { q[i] + ld } else { q[i] };
-            let r = (rhs - bx[i]).abs();
-            let mut s = T::one().max(q[i].abs()).max(ld.abs()).max(bx[i].abs());
+            let rhs = if l_nonbasic { q + ld } else { q };
+            let r = (rhs - bx).abs();
+            let mut s = T::one().max(q.abs()).max(ld.abs()).max(bx.abs());
             if let Some(big) = big {
-                s = s.max(big[i]);
+                s = s.max(big);
             }
             if r > bound * s {
                 let v = (r / s).to_f64();
                 if v > eq {
                     eq = v;
                     bound = T::from_f64(v * (1.0 - 1e-9));
+                }
+            }
+        };
+        match big {
+            Some(big) => {
+                for (((&q, &d), &bx), &b) in q.iter().zip(d).zip(bx).zip(big) {
+                    row(q, d, bx, Some(b));
+                }
+            }
+            None => {
+                for ((&q, &d), &bx) in q.iter().zip(d).zip(bx) {
+                    row(q, d, bx, None);
                 }
             }
         }
