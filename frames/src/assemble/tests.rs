@@ -11,6 +11,65 @@ use faer::Mat;
 /// them in sparse form equals the dense one.
 #[test]
 fn sparse_blocks_equal_the_dense_assembly_on_every_scene() {
+    let checked = for_every_assembly(|path, scene, leave_out, sys| {
+        let f = full_blocks(&scene.frame);
+        let keep_c: Vec<usize> = sys
+            .coordinates
+            .iter()
+            .map(|c| f.coords.iter().position(|x| x == c).unwrap())
+            .collect();
+        let keep_f: Vec<usize> = sys
+            .forces
+            .iter()
+            .map(|m| f.forces.iter().position(|x| x == m).unwrap())
+            .collect();
+        let mut dense = Mat::<f64>::zeros(keep_f.len(), keep_c.len());
+        for (i, &r) in keep_f.iter().enumerate() {
+            for &(j, v) in &f.a[r] {
+                if let Some(k) = keep_c.iter().position(|&c| c == j) {
+                    dense[(i, k)] = v;
+                }
+            }
+        }
+        let what = format!("{} (leave out {leave_out})", path.display());
+        assert_eq!(sys.a.to_dense(), dense, "{what}: A");
+        for i in 0..dense.nrows() {
+            for j in 0..dense.ncols() {
+                assert_eq!(sys.a[(i, j)].to_bits(), dense[(i, j)].to_bits(), "{what}");
+            }
+        }
+        let tn = sys.tn.to_dense();
+        for i in 0..tn.nrows() {
+            for j in 0..tn.ncols() {
+                assert_eq!(sys.tn[(i, j)].to_bits(), tn[(i, j)].to_bits(), "{what}");
+            }
+        }
+        let sparse = sys.plcp_sparse::<f64>(None).unwrap();
+        assert_eq!(sparse.m(), sys.plcp::<f64>(None).unwrap().m(), "{what}");
+    });
+    assert!(checked >= 40, "{checked}");
+}
+
+/// The second forces of all sections at once are the ones found section by
+/// section, on every scene (planar, grillage, space; left out or not).
+#[test]
+fn second_force_indices_match_the_search_on_every_scene() {
+    let mut found = 0;
+    let checked = for_every_assembly(|path, _, _, sys| {
+        let all = sys.second_force_indices();
+        assert_eq!(all.len(), sys.sections.len());
+        for (k, &idx) in all.iter().enumerate() {
+            assert_eq!(idx, sys.second_force_index(k), "{}", path.display());
+            found += usize::from(idx.is_some());
+        }
+    });
+    assert!(checked >= 40 && found > 0, "{checked} {found}");
+}
+
+/// Calls `check` with every scene of `scenes/` (and its `pipe-whip` and
+/// `stiff` folders) assembled with and without leaving out; returns the
+/// number of assemblies checked.
+fn for_every_assembly(mut check: impl FnMut(&std::path::Path, &Scene, bool, System)) -> usize {
     let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../scenes");
     let mut checked = 0;
     for dir in [root.clone(), root.join("pipe-whip"), root.join("stiff")] {
@@ -21,74 +80,17 @@ fn sparse_blocks_equal_the_dense_assembly_on_every_scene() {
             }
             let scene = Scene::from_file(&path).unwrap();
             for leave_out in [true, false] {
-                let sys = System::assemble_with(&scene.frame, leave_out);
-                let f = full_blocks(&scene.frame);
-                let keep_c: Vec<usize> = sys
-                    .coordinates
-                    .iter()
-                    .map(|c| f.coords.iter().position(|x| x == c).unwrap())
-                    .collect();
-                let keep_f: Vec<usize> = sys
-                    .forces
-                    .iter()
-                    .map(|m| f.forces.iter().position(|x| x == m).unwrap())
-                    .collect();
-                let mut dense = Mat::<f64>::zeros(keep_f.len(), keep_c.len());
-                for (i, &r) in keep_f.iter().enumerate() {
-                    for &(j, v) in &f.a[r] {
-                        if let Some(k) = keep_c.iter().position(|&c| c == j) {
-                            dense[(i, k)] = v;
-                        }
-                    }
-                }
-                let what = format!("{} (leave out {leave_out})", path.display());
-                assert_eq!(sys.a.to_dense(), dense, "{what}: A");
-                for i in 0..dense.nrows() {
-                    for j in 0..dense.ncols() {
-                        assert_eq!(sys.a[(i, j)].to_bits(), dense[(i, j)].to_bits(), "{what}");
-                    }
-                }
-                let tn = sys.tn.to_dense();
-                for i in 0..tn.nrows() {
-                    for j in 0..tn.ncols() {
-                        assert_eq!(sys.tn[(i, j)].to_bits(), tn[(i, j)].to_bits(), "{what}");
-                    }
-                }
-                let sparse = sys.plcp_sparse::<f64>(None).unwrap();
-                assert_eq!(sparse.m(), sys.plcp::<f64>(None).unwrap().m(), "{what}");
+                check(
+                    &path,
+                    &scene,
+                    leave_out,
+                    System::assemble_with(&scene.frame, leave_out),
+                );
                 checked += 1;
             }
         }
     }
-    assert!(checked >= 40, "{checked}");
-}
-
-/// The second forces of all sections at once are the ones found section by
-/// section, on every scene (planar, grillage, space; left out or not).
-#[test]
-fn second_force_indices_match_the_search_on_every_scene() {
-    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../scenes");
-    let (mut checked, mut found) = (0, 0);
-    for dir in [root.clone(), root.join("pipe-whip"), root.join("stiff")] {
-        for e in std::fs::read_dir(dir).unwrap() {
-            let path = e.unwrap().path();
-            if path.extension().is_none_or(|x| x != "toml") {
-                continue;
-            }
-            let scene = Scene::from_file(&path).unwrap();
-            for leave_out in [true, false] {
-                let sys = System::assemble_with(&scene.frame, leave_out);
-                let all = sys.second_force_indices();
-                assert_eq!(all.len(), sys.sections.len());
-                for (k, &idx) in all.iter().enumerate() {
-                    assert_eq!(idx, sys.second_force_index(k), "{}", path.display());
-                    found += usize::from(idx.is_some());
-                }
-                checked += 1;
-            }
-        }
-    }
-    assert!(checked >= 40 && found > 0, "{checked} {found}");
+    checked
 }
 
 fn scene(src: &str) -> Scene {
