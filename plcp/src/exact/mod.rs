@@ -22,7 +22,7 @@
 //! `(T_iq + L T_id) / det`, and the exact breakpoint where it reaches zero is
 //! `L = -T_iq / T_id`.
 //!
-//! * [`certify`] (certify.rs) takes a float path and, segment by segment,
+//! * [`certify`] (`certify/`) takes a float path and, segment by segment,
 //!   solves the segment's basis exactly (by p-adic lifting, modular.rs, with
 //!   an exact check of the solution; on the tableau above where the basis is
 //!   not square, solution.rs holds either answer), checks that it is
