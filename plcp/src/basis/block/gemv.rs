@@ -5,7 +5,7 @@
 //! faer's matrix-vector product pays a fixed cost per call (dispatch,
 //! checks) that shows at the orders of an everyday block (tens): on the MPC
 //! loop of `docs/performance.md` (a block of order about 25 in 50 rows) a
-//! `solve_into` took 9.6 k instructions with it and 6.9 k with this loop
+//! `solve_into` took 9.6 k instructions with it and 7.7 k with this loop
 //! (callgrind, 363 calls). Rows go in blocks of 16 whose sums stay in registers
 //! over all the columns; each entry is `y_i = ((a_i0 x_0) + a_i1 x_1) +
 //! ...` in the order of the columns, fixed by the code, so the result does
