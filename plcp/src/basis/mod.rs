@@ -268,15 +268,18 @@ pub(crate) trait BasisFactor<T: Scalar> {
 }
 
 fn norm1<T: Scalar>(a: MatRef<'_, T>) -> f64 {
-    let mut best = 0.0f64;
-    for j in 0..a.ncols() {
-        let mut s = 0.0f64;
-        for i in 0..a.nrows() {
-            s += a[(i, j)].to_f64().abs();
-        }
-        best = best.max(s);
+    col_norms1(a).into_iter().fold(0.0f64, f64::max)
+}
+
+/// `f` on the entries of column `j` in order, over a slice when the column
+/// is contiguous (the same values either way: the refactorisations' passes
+/// without faer's index checks, issue 20).
+#[inline]
+fn for_col<T: Scalar>(a: MatRef<'_, T>, j: usize, mut f: impl FnMut(usize, T)) {
+    match a.col(j).try_as_col_major() {
+        Some(c) => c.as_slice().iter().enumerate().for_each(|(i, &v)| f(i, v)),
+        None => (0..a.nrows()).for_each(|i| f(i, a[(i, j)])),
     }
-    best
 }
 
 /// Inverts a square matrix by LU with partial pivoting after scaling its
@@ -300,7 +303,11 @@ fn invert<T: Scalar>(b: MatRef<'_, T>, scale: &[f64]) -> Option<(Mat<T>, f64)> {
 fn invert_par<T: Scalar>(b: MatRef<'_, T>, scale: &[f64], par: faer::Par) -> Option<(Mat<T>, f64)> {
     let dim = b.nrows();
     let sc: Vec<T> = scale.iter().map(|&s| T::from_f64(pow2(s))).collect();
-    let bs = Mat::from_fn(dim, dim, |i, j| b[(i, j)] / sc[j]);
+    let mut bs = Mat::<T>::zeros(dim, dim);
+    for (j, &s) in sc.iter().enumerate() {
+        let dst = slice_mut_of_mat(bs.as_mut(), j);
+        for_col(b, j, |i, v| dst[i] = v / s);
+    }
     let (mut inv, umax, umin) = crate::linalg::inverse_par(bs.as_ref(), par)?;
     if dim > 0 && umin <= umax * T::eps().to_f64() * dim as f64 {
         return None;
@@ -311,9 +318,8 @@ fn invert_par<T: Scalar>(b: MatRef<'_, T>, scale: &[f64], par: faer::Par) -> Opt
     }
     // B^{-1} = D (B D)^{-1}: row j divided by scale[j]
     for c in 0..dim {
-        for (j, s) in sc.iter().enumerate() {
-            let v = inv[(j, c)] / *s;
-            inv[(j, c)] = v;
+        for (v, s) in slice_mut_of_mat(inv.as_mut(), c).iter_mut().zip(&sc) {
+            *v /= *s;
         }
     }
     Some((inv, cond))
@@ -322,8 +328,21 @@ fn invert_par<T: Scalar>(b: MatRef<'_, T>, scale: &[f64], par: faer::Par) -> Opt
 /// The 1-norm of each column.
 fn col_norms1<T: Scalar>(a: MatRef<'_, T>) -> Vec<f64> {
     (0..a.ncols())
-        .map(|j| (0..a.nrows()).map(|i| a[(i, j)].to_f64().abs()).sum())
+        .map(|j| {
+            let mut s = 0.0f64;
+            for_col(a, j, |_, v| s += v.to_f64().abs());
+            s
+        })
         .collect()
+}
+
+/// Column `j` of an owned (column-major) matrix, as a mutable slice.
+#[inline]
+fn slice_mut_of_mat<T: Scalar>(m: MatMut<'_, T>, j: usize) -> &mut [T] {
+    m.col_mut(j)
+        .try_as_col_major_mut()
+        .expect("an owned matrix is column-major")
+        .as_slice_mut()
 }
 
 /// `m[0..k, col] += u[0..k] * f`, over a contiguous column (vectorises).

@@ -3,6 +3,7 @@
 //! default; see the module documentation of [`crate::basis`]).
 
 use super::*;
+mod gemv;
 mod pending;
 #[cfg(test)]
 mod tests;
@@ -227,13 +228,16 @@ impl<T: Scalar> BlockInverse<T> {
         let mut sinv = self.sinv.borrow_mut();
         let Some(pending) = self.pending.borrow_mut().take() else {
             if let Some(ar) = ar {
-                let x = faer::ColRef::from_slice(ar);
                 let mut ym = self.ym.borrow_mut();
-                matvec_into_mut(
-                    sinv.as_ref().submatrix(0, 0, k, k),
-                    x,
-                    ym.as_mut().subrows_mut(0, k),
-                );
+                let sinv = sinv.as_ref().submatrix(0, 0, k, k);
+                match self.par(k * k) {
+                    faer::Par::Seq => gemv::gemv(sinv, ar, &mut slice_mut_of(&mut ym)[..k]),
+                    _ => matvec_into_mut(
+                        sinv,
+                        faer::ColRef::from_slice(ar),
+                        ym.as_mut().subrows_mut(0, k),
+                    ),
+                }
             }
             return;
         };
@@ -404,7 +408,15 @@ impl<T: Scalar> BasisFactor<T> for BlockInverse<T> {
         }
         self.k = k;
         self.k_refactored = k;
-        let s = Mat::from_fn(k, k, |a, b| self.g[(self.rows[a], b)]);
+        // (column by column over slices: the same entries, without faer's
+        // index checks; likewise the copies and the coupling's norm below)
+        let mut s = Mat::<T>::zeros(k, k);
+        for b in 0..k {
+            let g = col_of(self.g.as_ref(), b);
+            for (e, &i) in column_slice(s.as_mut(), b).iter_mut().zip(&self.rows) {
+                *e = g[i];
+            }
+        }
         // columns scaled by their full 1-norm (see `invert`)
         let nu: Vec<f64> = col_norms1(self.g.as_ref().subcols(0, k))
             .into_iter()
@@ -414,11 +426,9 @@ impl<T: Scalar> BasisFactor<T> for BlockInverse<T> {
         let par = self.par(crate::linalg::inverse_flops(k));
         let (inv, cond_s) = invert_par(s.as_ref(), &nu, par)?;
         let sinv = self.sinv.get_mut();
-        for b in 0..k {
-            for a in 0..k {
-                sinv[(b, a)] = inv[(b, a)];
-                self.s[(a, b)] = s[(a, b)];
-            }
+        for a in 0..k {
+            column_slice(sinv.as_mut(), a)[..k].copy_from_slice(col_of(inv.as_ref(), a));
+            column_slice(self.s.as_mut(), a)[..k].copy_from_slice(col_of(s.as_ref(), a));
         }
         // With D scaling the matrix columns to 1-norm in [1/2, 2) (powers of
         // two), B D = [[S D, 0],
@@ -427,9 +437,9 @@ impl<T: Scalar> BasisFactor<T> for BlockInverse<T> {
         // bound of cond_1(B D) up to a factor 2 (and |C D|_1 < 2).
         let cnorm = (0..k).fold(0.0f64, |acc, b| {
             let mut s = 0.0;
-            for i in 0..dim {
-                if covered[i] {
-                    s += self.g[(i, b)].to_f64().abs();
+            for (&v, &c) in col_of(self.g.as_ref(), b)[..dim].iter().zip(&covered) {
+                if c {
+                    s += v.to_f64().abs();
                 }
             }
             acc.max(s / nu[b])
@@ -454,11 +464,11 @@ impl<T: Scalar> BasisFactor<T> for BlockInverse<T> {
         if gy.nrows() != self.dim {
             *gy = Col::zeros(self.dim);
         }
-        matvec_into(
-            self.g.as_ref().subcols(0, k),
-            ym.as_ref().subrows(0, k),
-            &mut gy,
-        );
+        let g = self.g.as_ref().subcols(0, k);
+        match self.par(self.dim * k) {
+            faer::Par::Seq => gemv::gemv(g, &slice_of(&ym)[..k], slice_mut_of(&mut gy)),
+            _ => matvec_into(g, ym.as_ref().subrows(0, k), &mut gy),
+        }
         if out.nrows() != self.dim {
             *out = Col::zeros(self.dim);
         }
