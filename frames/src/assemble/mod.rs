@@ -307,6 +307,22 @@ impl System {
             .position(|f| *f == MemberForce::Moment(section))
     }
 
+    /// [`Self::moment_index`] of every section, in one pass over the forces
+    /// (each section's first moment, as `position` finds it): reading the
+    /// hinge groups asked it of every section, `sections x forces`
+    /// comparisons (at 10^4 elements 20000 x 20000).
+    pub fn moment_indices(&self) -> Vec<Option<usize>> {
+        let mut by_section: Vec<Option<usize>> = vec![None; self.sections.len()];
+        for (k, f) in self.forces.iter().enumerate() {
+            if let MemberForce::Moment(s) = *f {
+                if let Some(slot) = by_section.get_mut(s) {
+                    slot.get_or_insert(k);
+                }
+            }
+        }
+        by_section
+    }
+
     /// Index of the kept member force holding the bending moment about `e2`
     /// of `section` (space frames), if kept.
     pub fn moment2_index(&self, section: usize) -> Option<usize> {

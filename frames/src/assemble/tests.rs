@@ -66,6 +66,22 @@ fn second_force_indices_match_the_search_on_every_scene() {
     assert!(checked >= 40 && found > 0, "{checked} {found}");
 }
 
+/// The moments of all sections at once are the ones found section by
+/// section, on every scene.
+#[test]
+fn moment_indices_match_the_search_on_every_scene() {
+    let mut found = 0;
+    let checked = for_every_assembly(|path, _, _, sys| {
+        let all = sys.moment_indices();
+        assert_eq!(all.len(), sys.sections.len());
+        for (k, &idx) in all.iter().enumerate() {
+            assert_eq!(idx, sys.moment_index(k), "{}", path.display());
+            found += usize::from(idx.is_some());
+        }
+    });
+    assert!(checked >= 40 && found > 0, "{checked} {found}");
+}
+
 /// Calls `check` with every scene of `scenes/` (and its `pipe-whip` and
 /// `stiff` folders) assembled with and without leaving out; returns the
 /// number of assemblies checked.

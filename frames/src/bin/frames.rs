@@ -360,7 +360,33 @@ fn run(cli: Cli) -> Result<(), FramesError> {
     }
 }
 
+/// One malloc arena for the whole process (glibc), unless the user set
+/// `MALLOC_ARENA_MAX`. glibc gives each thread that allocates an arena of its
+/// own: the trace thread allocates every piece of the path, the reading on
+/// the main thread frees it, and memory freed in one arena is not reused by
+/// the other. Measured on the 10^4-element cantilever (`--json --lambda-max
+/// 12`, one run each at load 7 to 10): peak resident 957 MB with the default
+/// arenas, 430 MB with `MALLOC_ARENA_MAX=1` (the same trace, CPU time 160 s
+/// against 153 s). Called before any thread is started.
+#[cfg(all(target_os = "linux", target_env = "gnu"))]
+fn one_malloc_arena() {
+    unsafe extern "C" {
+        fn mallopt(param: i32, value: i32) -> i32;
+    }
+    const M_ARENA_MAX: i32 = -8;
+    if std::env::var_os("MALLOC_ARENA_MAX").is_none() {
+        // SAFETY: glibc's mallopt, with a valid parameter, before any thread
+        unsafe {
+            mallopt(M_ARENA_MAX, 1);
+        }
+    }
+}
+
+#[cfg(not(all(target_os = "linux", target_env = "gnu")))]
+fn one_malloc_arena() {}
+
 fn main() -> ExitCode {
+    one_malloc_arena();
     let cli = Cli::parse();
     // a panic is a bug, reported on one line with exit code 3, never a backtrace
     static PANIC: std::sync::Mutex<String> = std::sync::Mutex::new(String::new());

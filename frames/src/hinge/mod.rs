@@ -78,8 +78,10 @@ struct GroupSets {
 }
 
 fn groups(frame: &Frame, system: &System) -> (Vec<HingeGroup>, Vec<Option<usize>>) {
-    let kept: Vec<bool> = (0..system.sections.len())
-        .map(|k| system.moment_index(k).is_some())
+    let kept: Vec<bool> = system
+        .moment_indices()
+        .iter()
+        .map(Option::is_some)
         .collect();
     let mut partner = vec![None; system.sections.len()];
     for t in &system.ties {
