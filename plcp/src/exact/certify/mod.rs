@@ -45,7 +45,7 @@ mod segment;
 
 use self::bases::Bases;
 use self::segment::{end_point, path_end, segment};
-use super::{rational_to_f64, short, to_rational};
+use super::{short, to_rational};
 use crate::path::Path;
 use crate::problem::Plcp;
 use crate::scalar::Scalar;
@@ -137,7 +137,7 @@ impl Certificate {
             "failure": self.failure.as_ref().map(|f| serde_json::json!({
                 "segment": f.segment, "reason": f.reason })),
             "breakpoints": self.breakpoints.iter().map(short).collect::<Vec<_>>(),
-            "breakpoints_f64": self.breakpoints.iter().map(rational_to_f64).collect::<Vec<_>>(),
+            "breakpoints_f64": self.breakpoints.iter().map(super::rational_to_f64).collect::<Vec<_>>(),
             "max_rel_diff": self.max_rel_diff,
             "segments": self.segments,
             "pivots": self.pivots,
