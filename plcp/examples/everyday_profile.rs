@@ -4,12 +4,17 @@
 //! ```sh
 //! cargo run --release -p plcp --example everyday_profile -- solve FILE.json 2000
 //! cargo run --release -p plcp --example everyday_profile -- sequence SEQ.json 20
+//! cargo run --release -p plcp --example everyday_profile -- tiny - 100000
+//! THREADS=default cargo run --release -p plcp --example everyday_profile -- solve FILE.json 20
 //! ```
 //!
 //! `solve`: `plcp::solve` on one thread, `REPS` times; prints the mean and
 //! the best time per call. `sequence`: the loop of `plcp sequence` (an LCP at
 //! `g_0`, then one step per later target) `REPS` times, per step, with the
 //! lean `Solver::step_end` (`PATHS=1`: `Solver::step`, the full path).
+//! `tiny`: the tiny call of issue 20 (`n = 2`, one pivot; the file argument
+//! is not read). One thread (`Settings::threads = Some(1)`) unless
+//! `THREADS=default` (the library's choice by size).
 
 use plcp::Settings;
 use std::time::Instant;
@@ -18,9 +23,13 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let args: Vec<String> = std::env::args().collect();
     let (mode, file) = (args.get(1).ok_or("mode")?, args.get(2).ok_or("file")?);
     let reps: usize = args.get(3).map_or(Ok(100), |s| s.parse())?;
-    faer::set_global_parallelism(faer::Par::Seq);
+    // THREADS=default: the library's thread choice (by size), else one thread
+    let default_threads = std::env::var("THREADS").is_ok_and(|v| v == "default");
+    if !default_threads {
+        faer::set_global_parallelism(faer::Par::Seq);
+    }
     let settings = Settings::<f64> {
-        threads: Some(1),
+        threads: if default_threads { None } else { Some(1) },
         ..Settings::default()
     };
     let (mut best, mut total) = (f64::INFINITY, 0.0);
@@ -67,6 +76,28 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
                 1e6 * c,
                 1e6 * d,
                 1e6 * e
+            );
+        }
+        "tiny" => {
+            // the tiny call of issue 20: `M = [[2, 1], [1, 2]]`, `q = (1, 1)`,
+            // `d = (-1, -0.5)`, `L` to 1.5, one pivot (FILE is not read)
+            let m = faer::mat![[2.0, 1.0], [1.0, 2.0]];
+            let (q, d) = (faer::col![1.0, 1.0], faer::col![-1.0, -0.5]);
+            let problem = plcp::Plcp::new(m.as_ref(), q.as_ref(), d.as_ref())
+                .and_then(|p| p.with_range(0.0, Some(1.5)))?;
+            for _ in 0..reps {
+                let t = Instant::now();
+                let path = plcp::solve(&problem, &settings)?;
+                let s = t.elapsed().as_secs_f64();
+                std::hint::black_box(&path);
+                best = best.min(s);
+                total += s;
+                calls = path.info.pivots;
+            }
+            println!(
+                "tiny n=2 pivots={calls}: mean {:.2} us, best {:.2} us",
+                1e6 * total / reps as f64,
+                1e6 * best
             );
         }
         "solve" => {

@@ -325,7 +325,7 @@ impl SignUnits {
 }
 
 /// The entries of an owned (contiguous) column.
-fn slice<T: Scalar>(c: &faer::Col<T>) -> &[T] {
+pub(crate) fn slice<T: Scalar>(c: &faer::Col<T>) -> &[T] {
     c.as_ref()
         .try_as_col_major()
         .expect("an owned column is contiguous")

@@ -453,8 +453,8 @@ impl<'a, T: Scalar> Engine<'a, T> {
         self.d.as_mut().copy_from(d);
         self.data_max = Self::data_max(&self.q, &self.d);
         self.d_rows.clear();
-        for i in 0..self.dim {
-            if self.d[i] != T::zero() {
+        for (i, &v) in col_slice(&self.d).iter().enumerate() {
+            if v != T::zero() {
                 self.d_rows.push(i);
             }
         }
@@ -481,14 +481,26 @@ impl<'a, T: Scalar> Engine<'a, T> {
             return false;
         }
         let tol = T::from_f64(2.0) * T::eps();
-        (0..self.dim).all(|i| {
-            let new = q[i] + lambda * d[i];
-            let (a, b) = (self.q[i], self.lambda * self.d[i]);
+        let same = |q: T, d: T, a: T, od: T| {
+            let new = q + lambda * d;
+            let (a, b) = (a, self.lambda * od);
             let old = a + b;
             // one rounding of either sum: relative to its largest term
             let size = new.abs().max(a.abs()).max(b.abs());
-            new == old || (new - old).abs() <= tol * size
-        })
+            (new == old) | ((new - old).abs() <= tol * size)
+        };
+        match (q.try_as_col_major(), d.try_as_col_major()) {
+            // over slices without stopping early (the compiler vectorises it)
+            (Some(q), Some(d)) => {
+                let (q, d) = (&q.as_slice()[..self.dim], &d.as_slice()[..self.dim]);
+                let (oq, od) = (col_slice(&self.q), col_slice(&self.d));
+                q.iter()
+                    .zip(d)
+                    .zip(oq.iter().zip(od))
+                    .fold(true, |ok, ((&q, &d), (&a, &od))| ok & same(q, d, a, od))
+            }
+            _ => (0..self.dim).all(|i| same(q[i], d[i], self.q[i], self.d[i])),
+        }
     }
 
     /// After a clean measure of the end point on the data (the solver object,
