@@ -352,15 +352,7 @@ impl<'a, T: Scalar> Solver<'a, T> {
             let all_fine = match v.try_as_col_major() {
                 // `f32`/`f64` (exact in `f64`): the same conditions without
                 // branches, `|x| < inf` for finite
-                Some(s) if T::NATIVE => {
-                    let min = T::min_normal();
-                    let bad = s.as_slice().iter().fold(0u64, |bad, &x| {
-                        let a = x.to_f64().abs();
-                        let ok = (a < f64::INFINITY) & ((a == 0.0) | (a >= min));
-                        bad | u64::from(!ok)
-                    });
-                    bad == 0
-                }
+                Some(s) if T::NATIVE => pulp::Arch::new().dispatch(DataFine(s.as_slice())),
                 _ => (0..n).all(|i| fine(v[i])),
             };
             if all_fine {
@@ -715,6 +707,27 @@ impl<T: Scalar> pulp::WithSimd for EndResidualPass<'_, '_, T> {
         let mz = mz.to_f64();
         let z_unit = if mz > 0.0 { unit / mz } else { unit };
         crate::residual::signs_in_units(eq, point, z_unit, unit)
+    }
+}
+
+/// [`Solver::check_data`]'s test of a slice of `f32`/`f64` data (exact in
+/// `f64`): every entry finite and zero or at least the smallest normal
+/// number, without branches (`|x| < inf` for finite), compiled for the
+/// machine's vector width through pulp's dispatch.
+struct DataFine<'a, T: Scalar>(&'a [T]);
+
+impl<T: Scalar> pulp::WithSimd for DataFine<'_, T> {
+    type Output = bool;
+
+    #[inline(always)]
+    fn with_simd<S: pulp::Simd>(self, _simd: S) -> bool {
+        let min = T::min_normal();
+        let bad = self.0.iter().fold(0u64, |bad, &x| {
+            let a = x.to_f64().abs();
+            let ok = (a < f64::INFINITY) & ((a == 0.0) | (a >= min));
+            bad | u64::from(!ok)
+        });
+        bad == 0
     }
 }
 
