@@ -16,6 +16,9 @@
 //! ```
 //!
 //! Each case runs once (no repetition: these are minutes long at the top end).
+//! `--frames PATH` and `--obstacle-bin PATH` run other binaries (a copy of an
+//! older build, to compare side by side); an empty list (`--obstacle ''`)
+//! skips that part.
 //!
 //! `--trace 10000` traces the cantilever's system (9) alone (plcp's sparse
 //! long form in `f64`, `Keep::Nothing`, segments dropped as they come; no
@@ -112,7 +115,10 @@ fn list<T: std::str::FromStr>(args: &[String], flag: &str, default: &str) -> Vec
         .position(|a| a == flag)
         .and_then(|i| args.get(i + 1))
         .map_or(default, |s| s.as_str());
-    v.split(',').filter_map(|s| s.parse().ok()).collect()
+    v.split(',')
+        .filter(|s| !s.is_empty())
+        .filter_map(|s| s.parse().ok())
+        .collect()
 }
 
 /// One trace of the `n`-element cantilever's system (9), nothing stored.
@@ -209,8 +215,15 @@ fn main() -> Result<(), String> {
     let cant: Vec<usize> = list(&args, "--cantilever", "100,1000,2000");
     let obst: Vec<String> = list(&args, "--obstacle", "32:4,100:1,316:0.8");
     let target = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("target/release");
-    let frames = target.join("frames");
-    let obstacle = target.join("examples/obstacle");
+    // other binaries (an older build, side by side): `--frames PATH`, `--obstacle-bin PATH`
+    let path_arg = |flag: &str, default: PathBuf| {
+        args.iter()
+            .position(|a| a == flag)
+            .and_then(|i| args.get(i + 1))
+            .map_or(default, PathBuf::from)
+    };
+    let frames = path_arg("--frames", target.join("frames"));
+    let obstacle = path_arg("--obstacle-bin", target.join("examples/obstacle"));
     let dir = std::env::temp_dir().join("plcp-scaling-report");
     std::fs::create_dir_all(&dir).map_err(|e| e.to_string())?;
     println!("| case | n | wall s | user s | peak resident MB | output MB | status | breakpoints against the closed form |");

@@ -262,92 +262,105 @@ impl Analysis {
             .collect()
     }
 
-    /// The `intervals`, built one at a time as they are written (the part
-    /// owns its selections, shared, as each pass of the serialiser makes a
-    /// new iterator).
+    /// The `intervals`, written one at a time (the part owns its
+    /// selections, shared, as each pass of the serialiser makes a new
+    /// iterator). Each entry is serialised straight from the reading and
+    /// the response ([`IntervalEntry`]); only the hinge sets and the member
+    /// forces of the selected intervals are built as values.
     fn intervals_part(
         &self,
         node_sel: Vec<usize>,
         interval_sel: Vec<usize>,
         hinge_sets: HingeSets,
     ) -> Part<'_> {
-        let node_sel = std::rc::Rc::new(node_sel);
-        let interval_sel = std::rc::Rc::new(interval_sel);
-        Part::seq(move || {
-            let node_sel = node_sel.clone();
-            let interval_sel = interval_sel.clone();
+        let fr = &self.scene.frame;
+        // the accelerations' keys in the order a `Map` writes them: node ids
+        // (unique) and component names, sorted
+        let mut nodes: Vec<(&str, usize)> = node_sel
+            .iter()
+            .map(|&i| (fr.nodes[i].id.as_str(), self.response.slot(i).unwrap_or(i)))
+            .collect();
+        nodes.sort_by(|a, b| a.0.cmp(b.0));
+        nodes.dedup_by(|a, b| a.0 == b.0);
+        let mut comps: Vec<(&'static str, usize)> = fr
+            .model
+            .components()
+            .iter()
+            .map(|c| (c.as_str(), c.index()))
+            .collect();
+        comps.sort();
+        let shared = std::rc::Rc::new((node_sel, interval_sel, nodes, comps));
+        Part::Intervals(Box::new(move || {
+            let shared = shared.clone();
             let intervals = &self.reading.intervals;
-            intervals
-                .iter()
-                .zip(&self.response.intervals)
-                .enumerate()
-                .map(move |(k, (iv, r))| {
-                    let with_moments = interval_sel.binary_search(&k).is_ok();
-                    let sets = match hinge_sets {
-                        HingeSets::Full => vec![
-                            (
-                                "accelerating",
-                                json!(self.group_nodes(&iv.accelerating.to_vec())),
-                            ),
-                            (
-                                "constant_rate",
-                                json!(self.group_nodes(&iv.constant_rate.to_vec())),
-                            ),
-                        ],
-                        HingeSets::Changes => {
-                            let before = k.checked_sub(1).map(|j| &intervals[j]);
-                            let change = |now: &[usize], was: Option<&[usize]>| {
-                                let (added, removed) = set_changes(was.unwrap_or(&[]), now);
-                                json!({
-                                    "added": self.group_nodes(&added),
-                                    "removed": self.group_nodes(&removed),
-                                })
-                            };
-                            let acc = before.map(|b| b.accelerating.to_vec());
-                            let cr = before.map(|b| b.constant_rate.to_vec());
-                            vec![(
-                                "hinge_changes",
-                                json!({
-                                    "accelerating": change(&iv.accelerating.to_vec(), acc.as_deref()),
-                                    "constant_rate": change(&iv.constant_rate.to_vec(), cr.as_deref()),
-                                }),
-                            )]
+            Box::new(
+                intervals
+                    .iter()
+                    .zip(&self.response.intervals)
+                    .enumerate()
+                    .map(move |(k, (iv, r))| {
+                        let (_, interval_sel, _, _) = &*shared;
+                        let with_moments = interval_sel.binary_search(&k).is_ok();
+                        let sets = self.interval_sets(k, hinge_sets);
+                        IntervalEntry {
+                            analysis: self,
+                            iv,
+                            r,
+                            keys: shared.clone(),
+                            with_moments,
+                            sets,
                         }
-                    };
-                    self.interval_json(iv, r, &node_sel, with_moments, sets)
-                })
-        })
+                    }),
+            )
+        }))
     }
 
-    /// One entry of `intervals`: the hinge sets `sets` (keys and values), the
-    /// accelerations of the nodes `node_sel`, and (`with_moments`) the member
-    /// forces piece by piece.
-    fn interval_json(
-        &self,
-        iv: &crate::hinge::Interval,
-        r: &crate::response::IntervalResponse,
-        node_sel: &[usize],
-        with_moments: bool,
-        sets: Vec<(&str, Value)>,
-    ) -> Value {
-        let fr = &self.scene.frame;
-        let mut acc = Map::new();
-        for &i in node_sel.iter() {
-            let n = &fr.nodes[i];
-            let slot = self.response.slot(i).unwrap_or(i);
-            let mut o = Map::new();
-            for c in fr.model.components() {
-                o.insert(c.as_str().into(), json!(r.accelerations[slot][c.index()]));
+    /// The hinge sets of interval `k` (keys and values): the lists, or
+    /// their changes against the interval before.
+    fn interval_sets(&self, k: usize, hinge_sets: HingeSets) -> Vec<(&'static str, Value)> {
+        let intervals = &self.reading.intervals;
+        let iv = &intervals[k];
+        match hinge_sets {
+            HingeSets::Full => vec![
+                (
+                    "accelerating",
+                    json!(self.group_nodes(&iv.accelerating.to_vec())),
+                ),
+                (
+                    "constant_rate",
+                    json!(self.group_nodes(&iv.constant_rate.to_vec())),
+                ),
+            ],
+            HingeSets::Changes => {
+                let before = k.checked_sub(1).map(|j| &intervals[j]);
+                let change = |now: &[usize], was: Option<&[usize]>| {
+                    let (added, removed) = set_changes(was.unwrap_or(&[]), now);
+                    json!({
+                        "added": self.group_nodes(&added),
+                        "removed": self.group_nodes(&removed),
+                    })
+                };
+                let acc = before.map(|b| b.accelerating.to_vec());
+                let cr = before.map(|b| b.constant_rate.to_vec());
+                vec![(
+                    "hinge_changes",
+                    json!({
+                        "accelerating": change(&iv.accelerating.to_vec(), acc.as_deref()),
+                        "constant_rate": change(&iv.constant_rate.to_vec(), cr.as_deref()),
+                    }),
+                )]
             }
-            acc.insert(n.id.clone(), Value::Object(o));
         }
-        // the member forces piece by piece; at the interval's level
-        // only where one piece holds the whole interval (null where
-        // the path pivots inside it: no one affine field is right)
+    }
+
+    /// The member forces of an interval piece by piece (`pieces`), and at
+    /// the interval's level (`moments`, `second_forces`) only where one
+    /// piece holds the whole interval (null where the path pivots inside
+    /// it: no one affine field is right).
+    fn interval_forces(&self, r: &crate::response::IntervalResponse) -> (Value, Value, Vec<Value>) {
         let pieces: Vec<Value> = r
             .pieces
             .iter()
-            .filter(|_| with_moments)
             .map(|p| {
                 let mut o = json!({
                     "lambda_from": num(p.lambda_from),
@@ -363,20 +376,7 @@ impl Analysis {
             [one] => (one["moments"].clone(), one["second_forces"].clone()),
             _ => (Value::Null, Value::Null),
         };
-        let mut o = json!({
-            "lambda_from": num(iv.lambda_from),
-            "lambda_to": num(iv.lambda_to),
-            "rigid": iv.rigid,
-            "accelerations": acc,
-            "moments": moments,
-            "second_forces": second_forces,
-            "pieces": pieces,
-            "residual": {"equation": r.residual.equation, "feasibility": r.residual.feasibility, "complementarity": r.residual.complementarity},
-        });
-        for (key, value) in sets {
-            o[key] = value;
-        }
-        o
+        (moments, second_forces, pieces)
     }
 
     /// The `moments_at_breakpoints` selected by `diagram_sel`, built one at a
@@ -621,6 +621,126 @@ fn conventions(model: crate::model::Model) -> &'static str {
 enum Part<'a> {
     Value(Value),
     Seq(Box<dyn Fn() -> Box<dyn Iterator<Item = Value> + 'a> + 'a>),
+    Intervals(Box<IntervalIter<'a>>),
+}
+
+/// What makes the iterator of the `intervals` part.
+type IntervalIter<'a> = dyn Fn() -> Box<dyn Iterator<Item = IntervalEntry<'a>> + 'a> + 'a;
+
+/// The node ids and accelerations' slots, and the components' names and
+/// slots, sorted by name (with the node and interval selections).
+type IntervalKeys<'a> = (
+    Vec<usize>,
+    Vec<usize>,
+    Vec<(&'a str, usize)>,
+    Vec<(&'static str, usize)>,
+);
+
+/// One entry of `intervals`, serialised as the object
+/// [`Analysis::to_json_selected`] holds (keys in `Map`'s sorted order, the
+/// same numbers) without building it.
+struct IntervalEntry<'a> {
+    analysis: &'a Analysis,
+    iv: &'a crate::hinge::Interval,
+    r: &'a crate::response::IntervalResponse,
+    keys: std::rc::Rc<IntervalKeys<'a>>,
+    with_moments: bool,
+    sets: Vec<(&'static str, Value)>,
+}
+
+/// A number as `json!` writes it (null if not finite), or an object of
+/// named numbers.
+struct Num(f64);
+
+impl serde::Serialize for Num {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        if self.0.is_finite() {
+            s.serialize_f64(self.0)
+        } else {
+            s.serialize_unit()
+        }
+    }
+}
+
+/// The accelerations of the selected nodes in one interval.
+struct Accelerations<'e, 'a>(&'e IntervalEntry<'a>);
+
+impl serde::Serialize for Accelerations<'_, '_> {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        use serde::ser::SerializeMap;
+        struct Node<'n>(&'n [[f64; 2]], &'n [(&'static str, usize)]);
+        impl serde::Serialize for Node<'_> {
+            fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+                let mut m = s.serialize_map(Some(self.1.len()))?;
+                for &(name, c) in self.1 {
+                    m.serialize_entry(name, &self.0[c])?;
+                }
+                m.end()
+            }
+        }
+        let e = self.0;
+        let (_, _, nodes, comps) = &*e.keys;
+        let mut m = s.serialize_map(Some(nodes.len()))?;
+        for &(id, slot) in nodes {
+            m.serialize_entry(id, &Node(&e.r.accelerations[slot][..], comps))?;
+        }
+        m.end()
+    }
+}
+
+impl serde::Serialize for IntervalEntry<'_> {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        use serde::ser::SerializeMap;
+        enum Field<'f, 'a> {
+            Value(&'f Value),
+            Num(f64),
+            Bool(bool),
+            Acc(&'f IntervalEntry<'a>),
+            Residual(&'f crate::response::IntervalResponse),
+            Pieces(&'f [Value]),
+        }
+        let (moments, second_forces, pieces) = if self.with_moments {
+            self.analysis.interval_forces(self.r)
+        } else {
+            (Value::Null, Value::Null, Vec::new())
+        };
+        let mut fields: Vec<(&str, Field<'_, '_>)> = vec![
+            ("lambda_from", Field::Num(self.iv.lambda_from)),
+            ("lambda_to", Field::Num(self.iv.lambda_to)),
+            ("rigid", Field::Bool(self.iv.rigid)),
+            ("accelerations", Field::Acc(self)),
+            ("moments", Field::Value(&moments)),
+            ("second_forces", Field::Value(&second_forces)),
+            ("pieces", Field::Pieces(&pieces)),
+            ("residual", Field::Residual(self.r)),
+        ];
+        fields.extend(self.sets.iter().map(|(k, v)| (*k, Field::Value(v))));
+        fields.sort_by(|a, b| a.0.cmp(b.0));
+        let mut m = s.serialize_map(Some(fields.len()))?;
+        for (k, f) in &fields {
+            match f {
+                Field::Value(v) => m.serialize_entry(k, v)?,
+                Field::Num(x) => m.serialize_entry(k, &Num(*x))?,
+                Field::Bool(b) => m.serialize_entry(k, b)?,
+                Field::Acc(e) => m.serialize_entry(k, &Accelerations(e))?,
+                Field::Pieces(p) => m.serialize_entry(k, p)?,
+                Field::Residual(r) => {
+                    struct Res<'r>(&'r plcp::Residual);
+                    impl serde::Serialize for Res<'_> {
+                        fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+                            let mut m = s.serialize_map(Some(3))?;
+                            m.serialize_entry("complementarity", &Num(self.0.complementarity))?;
+                            m.serialize_entry("equation", &Num(self.0.equation))?;
+                            m.serialize_entry("feasibility", &Num(self.0.feasibility))?;
+                            m.end()
+                        }
+                    }
+                    m.serialize_entry(k, &Res(&r.residual))?
+                }
+            }
+        }
+        m.end()
+    }
 }
 
 impl<'a> Part<'a> {
@@ -634,6 +754,7 @@ impl serde::Serialize for Part<'_> {
         match self {
             Part::Value(v) => v.serialize(s),
             Part::Seq(f) => s.collect_seq(f()),
+            Part::Intervals(f) => s.collect_seq(f()),
         }
     }
 }

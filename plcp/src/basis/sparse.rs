@@ -27,6 +27,7 @@ use crate::path::Var;
 use crate::scalar::Scalar;
 use crate::sparse_lu::{col_slice, SparseFactor};
 use crate::tolerance::ROW_NOISE_EPS;
+use core::cell::RefCell;
 use faer::{Col, Mat};
 
 /// One pivot of the product form: the column at position `r` replaced, with
@@ -91,6 +92,12 @@ pub(crate) struct SparseLu<T: Scalar> {
     col_ptr: Vec<usize>,
     row_idx: Vec<usize>,
     val: Vec<T>,
+    /// Workspaces kept between pivots (no `dim`-long allocation per solve):
+    /// the two right-hand sides of [`BasisFactor::solve2`] in the factors'
+    /// row order, and the rows of `B^-T e_r` of [`BasisFactor::inverse_rows`]
+    /// (all zero between uses).
+    solve2_tmp: RefCell<Vec<T>>,
+    unit_tmp: RefCell<Vec<T>>,
 }
 
 impl<T: Scalar> SparseLu<T> {
@@ -104,6 +111,8 @@ impl<T: Scalar> SparseLu<T> {
             col_ptr: Vec::new(),
             row_idx: Vec::new(),
             val: Vec::new(),
+            solve2_tmp: RefCell::new(Vec::new()),
+            unit_tmp: RefCell::new(Vec::new()),
         }
     }
 
@@ -296,8 +305,7 @@ impl<T: Scalar> BasisFactor<T> for SparseLu<T> {
         let xs = col_slice(&mut x);
         let ys = col_slice(&mut y);
         if let Some(f) = &self.factor {
-            let mut tmp = Vec::with_capacity(2 * self.dim);
-            f.solve2_in_place(xs, ys, &mut tmp);
+            f.solve2_in_place(xs, ys, &mut self.solve2_tmp.borrow_mut());
         }
         self.apply_etas2(xs, ys);
         (x, y)
@@ -318,7 +326,8 @@ impl<T: Scalar> BasisFactor<T> for SparseLu<T> {
         let dim = self.dim;
         let factor = self.factor.as_ref();
         let mut x = Mat::<T>::zeros(dim, rows.len());
-        let mut c = vec![T::zero(); dim];
+        let mut c = self.unit_tmp.borrow_mut();
+        c.resize(dim, T::zero());
         for (col, &r) in rows.iter().enumerate() {
             let nz = self.apply_etas_transpose_unit(r, &mut c);
             let dst = x
