@@ -18,7 +18,6 @@
 //! | residuals at breakpoints | reported, measured by the trace with the next column solve (one pass over the basic columns, on the scaled system; under wide refinement a pass in the working precision over the refined values, once no further step follows) | equation row `r` relative to `max(1, abs(q_r), abs(L d_r), abs((B x)_r))`: at least the componentwise (Oettli-Prager) backward error, up to the floor of 1; under wide refinement also relative to `max_j abs(B_rj x_j)` |
 //! | refinement | entering columns refined (one step, residual in `Scalar::Wide`); basic values at breakpoints refined | columns: `cond * eps > refine_cond_eps` (default `1e-12`); values: in the working precision while the equation residual `> refine_tol_eps * eps` (default `1e3`, two steps), with wide residuals once `cond * eps >` [`WIDE_REFINE_COND_EPS`] (`1e-9`; on a sparse `M` from `refine_cond_eps`) |
 //! | idle refinement | the block basis pauses refining entering columns (then probes, pauses doubling to 64 solves) | [`REFINE_IDLE_RUN`] (`8`) corrections in a row `<= REFINE_IDLE_EPS * eps * max abs(y)` ([`REFINE_IDLE_EPS`] `= 64`) |
-//! | idle values refinement | the sparse long form's wide refinement of the basic values at breakpoints pauses (only the column refined; then probes, pauses doubling from 2 to 64 breakpoints; starts over at each refactorisation) | [`VALUES_IDLE_RUN`] (`2`) first corrections in a row with every entry `<= VALUES_IDLE_EPS * eps * max(1, abs(x_i))` ([`VALUES_IDLE_EPS`] `= 64`, [`VALUES_IDLE_PAUSE`] `= 64`) |
 //! | segment evaluation | [`crate::Segment::eval`] returns a negative `z` or `w` inside its segment as zero | `-v <= abs(slope) 64 eps max(1, abs(L)) + 64 eps abs(v_from)` and `-v > sqrt(eps) max(1, max abs(x))` |
 //! | residuals of points | reported ([`crate::residual::residual`]: start, end, `Path::at`, and every breakpoint for Lemke on a Schur reduction or on request, [`crate::residual::measure_path`]; the sign parts at both ends of every segment, [`crate::residual::segment_ends`]) | equation row `r` relative to `max(U, abs(q_r), abs(L d_r), abs(w_r), max_j abs(M_rj x_j))`, `U = min(max abs(q), max abs(d))` the data's unit ([`residual_unit`], no absolute floor); feasibility of `w` relative to `max(U, max abs(w))`, of `z` to `max(U / max abs(M_ij), max abs(z))` |
 //! | residual guard | a path that claims success is downgraded to `ill_conditioned`; the trace stops as `ill_conditioned` at a breakpoint whose residual (after refinement) fails it | largest reported residual `> sqrt(eps)` |
@@ -108,23 +107,6 @@ pub const ROW_NOISE_EPS: f64 = 1e3;
 /// the column refinement, at `Settings::refine_cond_eps`: the long cantilever's
 /// degenerate plastic multipliers need them from a condition of about `1e5`.
 pub const WIDE_REFINE_COND_EPS: f64 = 1e-9;
-
-/// The sparse long form's wide refinement of the basic values at
-/// breakpoints pauses on evidence (`Engine::refine_breakpoint_wide`): a
-/// first correction is idle when every entry is within this many `eps` of
-/// its value (relative, floor 1: feasibility and the equations are measured
-/// against scales of at least 1). On the 1000-element cantilever the idle
-/// corrections are 0.3 to 2 `eps`; the first after a refactorisation (the
-/// values solved afresh) is about `1e4 eps`.
-pub const VALUES_IDLE_EPS: f64 = 64.0;
-
-/// Idle first corrections in a row (since the last refactorisation) before
-/// the values' refinement pauses (see [`VALUES_IDLE_EPS`]).
-pub const VALUES_IDLE_RUN: usize = 2;
-
-/// The longest pause of the values' refinement, in breakpoints (pauses
-/// double from 2; a probe refines after each).
-pub const VALUES_IDLE_PAUSE: usize = 64;
 
 /// The block basis refines entering columns on its block while the
 /// refinement does something: once [`REFINE_IDLE_RUN`] corrections in a row

@@ -181,8 +181,6 @@ pub(crate) struct Engine<'a, T: Scalar> {
     x_buf: Col<T>,
     /// The fingerprints of the bases of the current trace ([`cycle`]).
     cycle: cycle::CycleGuard,
-    /// When the refinement of the basic values may pause (`refine.rs`).
-    values_gate: refine::ValuesGate,
 }
 
 /// The two accumulators of [`Engine::wide_residual_pair`] (values, column).
@@ -306,7 +304,6 @@ impl<'a, T: Scalar> Engine<'a, T> {
             col_of: None,
             x_buf: Col::zeros(0),
             cycle: cycle::CycleGuard::default(),
-            values_gate: refine::ValuesGate::default(),
         };
         for (r, v) in basis.iter().enumerate() {
             let k = e.var_index(*v);

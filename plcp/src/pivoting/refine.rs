@@ -29,40 +29,8 @@ impl<T: Scalar> pulp::WithSimd for WidePairFma<'_, '_, T> {
     #[inline(always)]
     fn with_simd<S: pulp::Simd>(self, _simd: S) -> Self::Output {
         self.engine
-            .wide_residual_pair_with::<true, true>(self.x, self.v, self.col)
+            .wide_residual_pair_with::<true>(self.x, self.v, self.col)
     }
-}
-
-/// [`Engine::wide_residual_column`] with fused multiply-add.
-struct WideColFma<'e, 'a, T: Scalar> {
-    engine: &'e Engine<'a, T>,
-    v: Var,
-    col: &'e Col<T>,
-}
-
-impl<T: Scalar> pulp::WithSimd for WideColFma<'_, '_, T> {
-    type Output = Col<T>;
-
-    #[inline(always)]
-    fn with_simd<S: pulp::Simd>(self, _simd: S) -> Self::Output {
-        self.engine
-            .wide_residual_pair_with::<true, false>(self.col, self.v, self.col)
-            .1
-    }
-}
-
-/// The evidence that lets the refinement of the basic values at a
-/// breakpoint pause ([`Engine::refine_breakpoint_wide`]; the constants in
-/// [`crate::tolerance::VALUES_IDLE_EPS`]).
-#[derive(Clone, Copy, Debug, Default)]
-pub(super) struct ValuesGate {
-    /// Idle first corrections in a row since the last refactorisation.
-    idle: usize,
-    /// The current pause (breakpoints), and what is left of it.
-    pause: usize,
-    left: usize,
-    /// The refactorisation count the evidence was gathered at.
-    at: usize,
 }
 
 impl<'a, T: Scalar> Engine<'a, T> {
@@ -294,84 +262,11 @@ impl<'a, T: Scalar> Engine<'a, T> {
                 col,
             });
         }
-        self.wide_residual_pair_with::<false, true>(x, v, col)
-    }
-
-    /// The residual `a_v - B col` of [`Self::wide_residual_pair`] alone (the
-    /// same numbers: the column's accumulator sees the same operations).
-    pub(super) fn wide_residual_column(&self, v: Var, col: &Col<T>) -> Col<T> {
-        if T::FMA_KERNEL && crate::scalar::fma_detected() {
-            return pulp::Arch::new().dispatch(WideColFma {
-                engine: self,
-                v,
-                col,
-            });
-        }
-        self.wide_residual_pair_with::<false, false>(col, v, col).1
-    }
-
-    /// The wide refinement at a breakpoint where the basis does not refine
-    /// its own solves: the entering column's correction (returned, applied
-    /// by [`Self::refine_column`]) and the basic values refined
-    /// ([`Self::refine_values_wide`]); returns their residual.
-    ///
-    /// On evidence (see [`crate::tolerance::VALUES_IDLE_EPS`]): once the
-    /// values' first correction has been idle (every entry within
-    /// `VALUES_IDLE_EPS` roundings of its value, floor 1) at
-    /// `VALUES_IDLE_RUN` breakpoints in a row since the last
-    /// refactorisation, the values' refinement pauses for 2, 4, ... up to
-    /// `VALUES_IDLE_PAUSE` breakpoints, then runs again as a probe; a
-    /// correction above the threshold ends the pauses. While paused, only
-    /// the column is refined (its wide residual alone, one solve) and the
-    /// values' residual is measured as after a converged refinement. A
-    /// refactorisation solves the values afresh from the new factors
-    /// (`values_from_factor`, errors of `cond * eps`): the evidence starts
-    /// over there.
-    pub(super) fn refine_breakpoint_wide(
-        &mut self,
-        driver: Var,
-        col: &Col<T>,
-    ) -> (Residual, Col<T>) {
-        use crate::tolerance::{VALUES_IDLE_EPS, VALUES_IDLE_PAUSE, VALUES_IDLE_RUN};
-        let g = &mut self.values_gate;
-        if g.at != self.refactorisations {
-            *g = ValuesGate {
-                at: self.refactorisations,
-                ..ValuesGate::default()
-            };
-        }
-        if g.left > 0 {
-            g.left -= 1;
-            let r = self.wide_residual_column(driver, col);
-            let dc = self.factor.solve(&r);
-            return (self.plain_residual_measured(), dc);
-        }
-        // the two corrections are independent: one sweep over the factors
-        let (values, column) = self.wide_residual_pair(&self.x, driver, col);
-        let (dx, dc) = self.factor.solve2(values, column);
-        let tol = VALUES_IDLE_EPS * T::eps().to_f64();
-        let l = self.row_of(Var::Lambda);
-        let idle = col_slice(&dx)
-            .iter()
-            .zip(col_slice(&self.x))
-            .enumerate()
-            .all(|(i, (d, x))| Some(i) == l || d.to_f64().abs() <= tol * x.to_f64().abs().max(1.0));
-        let g = &mut self.values_gate;
-        if idle {
-            g.idle += 1;
-            if g.idle >= VALUES_IDLE_RUN {
-                g.pause = (2 * g.pause).clamp(2, VALUES_IDLE_PAUSE);
-                g.left = g.pause;
-            }
-        } else {
-            g.idle = 0;
-            g.pause = 0;
-        }
-        (self.refine_values_wide(Some(dx)), dc)
+        self.wide_residual_pair_with::<false>(x, v, col)
     }
 
     #[inline(always)]
-    pub(super) fn wide_residual_pair_with<const FMA: bool, const VALUES: bool>(
+    pub(super) fn wide_residual_pair_with<const FMA: bool>(
         &self,
         x: &Col<T>,
         v: Var,
@@ -383,8 +278,7 @@ impl<'a, T: Scalar> Engine<'a, T> {
         let (acc, acc_c) = &mut *scratch;
         // the basic right-hand side (Self::rhs) and the column a_v (var_column)
         acc.clear();
-        if !VALUES {
-        } else if self.row_of(Var::Lambda).is_some() {
+        if self.row_of(Var::Lambda).is_some() {
             acc.extend((0..dim).map(|i| self.q[i].widen()));
         } else {
             acc.extend((0..dim).map(|i| (self.q[i] + self.lambda * self.d[i]).widen()));
@@ -404,7 +298,7 @@ impl<'a, T: Scalar> Engine<'a, T> {
         }
         for (k, b) in self.basis.iter().enumerate() {
             let (xk, ck) = (x[k], col[k]);
-            let (on_x, on_c) = (VALUES && xk != T::zero(), ck != T::zero());
+            let (on_x, on_c) = (xk != T::zero(), ck != T::zero());
             if !on_x && !on_c {
                 continue;
             }
@@ -434,11 +328,7 @@ impl<'a, T: Scalar> Engine<'a, T> {
                 Var::Artificial(i) => add(i, -T::one()),
             }
         }
-        let r = if VALUES {
-            Col::from_fn(dim, |i| T::narrow(acc[i]))
-        } else {
-            Col::zeros(0)
-        };
+        let r = Col::from_fn(dim, |i| T::narrow(acc[i]));
         let rc = Col::from_fn(dim, |i| T::narrow(acc_c[i]));
         (r, rc)
     }

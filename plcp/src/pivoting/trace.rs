@@ -251,13 +251,17 @@ impl<'a, T: Scalar> Engine<'a, T> {
                     if refine_here {
                         self.factor.set_refine(false);
                     }
-                    if self.refine_inside {
-                        self.refine_values_wide(None)
+                    let first = if self.refine_inside {
+                        None
                     } else {
-                        let (res, dc) = self.refine_breakpoint_wide(driver, col);
+                        // the two corrections are independent: one sweep
+                        // over the factors for both
+                        let (values, column) = self.wide_residual_pair(&self.x, driver, col);
+                        let (dx, dc) = self.factor.solve2(values, column);
                         col_correction = Some(dc);
-                        res
-                    }
+                        Some(dx)
+                    };
+                    self.refine_values_wide(first)
                 } else {
                     let mut a = Self::take_buf(&mut self.a_buf);
                     let mut bx = Self::take_buf(&mut self.bx_buf);
