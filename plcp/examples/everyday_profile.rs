@@ -85,15 +85,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             let (q, d) = (faer::col![1.0, 1.0], faer::col![-1.0, -0.5]);
             let problem = plcp::Plcp::new(m.as_ref(), q.as_ref(), d.as_ref())
                 .and_then(|p| p.with_range(0.0, Some(1.5)))?;
-            for _ in 0..reps {
-                let t = Instant::now();
-                let path = plcp::solve(&problem, &settings)?;
-                let s = t.elapsed().as_secs_f64();
-                std::hint::black_box(&path);
-                best = best.min(s);
-                total += s;
-                calls = path.info.pivots;
-            }
+            (best, total, calls) = time_solves(&problem, &settings, reps)?;
             println!(
                 "tiny n=2 pivots={calls}: mean {:.2} us, best {:.2} us",
                 1e6 * total / reps as f64,
@@ -102,15 +94,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         }
         "solve" => {
             let problem = plcp::io::json::read_plcp::<f64>(std::path::Path::new(file))?;
-            for _ in 0..reps {
-                let t = Instant::now();
-                let path = plcp::solve(&problem, &settings)?;
-                let s = t.elapsed().as_secs_f64();
-                std::hint::black_box(&path);
-                best = best.min(s);
-                total += s;
-                calls = path.info.pivots;
-            }
+            (best, total, calls) = time_solves(&problem, &settings, reps)?;
             println!(
                 "solve n={} pivots={calls}: mean {:.2} us, best {:.2} us",
                 problem.n(),
@@ -167,4 +151,24 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         _ => return Err("mode: solve or sequence".into()),
     }
     Ok(())
+}
+
+/// `reps` timed calls of `plcp::solve`: the best and the total seconds, and
+/// the pivots of a call.
+fn time_solves(
+    problem: &plcp::Plcp<f64>,
+    settings: &Settings<f64>,
+    reps: usize,
+) -> Result<(f64, f64, usize), plcp::PlcpError> {
+    let (mut best, mut total, mut pivots) = (f64::INFINITY, 0.0, 0);
+    for _ in 0..reps {
+        let t = Instant::now();
+        let path = plcp::solve(problem, settings)?;
+        let s = t.elapsed().as_secs_f64();
+        std::hint::black_box(&path);
+        best = best.min(s);
+        total += s;
+        pivots = path.info.pivots;
+    }
+    Ok((best, total, pivots))
 }
