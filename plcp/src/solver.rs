@@ -593,10 +593,15 @@ impl<T: Scalar> pulp::WithSimd for EndResidualPass<'_, '_, T> {
             }
         };
         let (q_s, d_s) = (&q_s[..n], &d_s[..n]);
+        // every row starts at `q + L d` (and its scale), then adds the columns
         acc.clear();
-        acc.resize(n, T::zero());
+        acc.extend(q_s.iter().zip(d_s).map(|(&qr, &dr)| qr + lambda * dr));
         big.clear();
-        big.resize(n, T::zero());
+        big.extend(
+            q_s.iter()
+                .zip(d_s)
+                .map(|(&qr, &dr)| qr.abs().max((lambda * dr).abs())),
+        );
         if colmax.len() != n {
             colmax.clear();
             colmax.resize(n, None);
@@ -637,7 +642,6 @@ impl<T: Scalar> pulp::WithSimd for EndResidualPass<'_, '_, T> {
         const C: usize = 32;
         let full = n - n % R;
         let mut slots: [&[T]; C] = [&[]; C];
-        let mut first = true;
         for (chunk_no, chunk) in nz.chunks(C).enumerate() {
             for (p, &(j, _)) in chunk.iter().enumerate() {
                 slots[p] = &column(chunk_no * C + p, j)[..n];
@@ -646,16 +650,8 @@ impl<T: Scalar> pulp::WithSimd for EndResidualPass<'_, '_, T> {
             let mut i0 = 0;
             while i0 < full {
                 let (mut a, mut s) = ([T::zero(); R], [T::zero(); R]);
-                if first {
-                    let (qb, db) = (&q_s[i0..i0 + R], &d_s[i0..i0 + R]);
-                    for l in 0..R {
-                        a[l] = qb[l] + lambda * db[l];
-                        s[l] = qb[l].abs().max((lambda * db[l]).abs());
-                    }
-                } else {
-                    a.copy_from_slice(&acc[i0..i0 + R]);
-                    s.copy_from_slice(&big[i0..i0 + R]);
-                }
+                a.copy_from_slice(&acc[i0..i0 + R]);
+                s.copy_from_slice(&big[i0..i0 + R]);
                 for (c, &(_, xj)) in cols.iter().zip(chunk) {
                     let xa = xj.abs();
                     let c = &c[i0..i0 + R];
@@ -669,12 +665,6 @@ impl<T: Scalar> pulp::WithSimd for EndResidualPass<'_, '_, T> {
                 i0 += R;
             }
             // the last rows column by column (the same order of operations)
-            if first {
-                for r in full..n {
-                    acc[r] = q_s[r] + lambda * d_s[r];
-                    big[r] = q_s[r].abs().max((lambda * d_s[r]).abs());
-                }
-            }
             for (c, &(_, xj)) in cols.iter().zip(chunk) {
                 let xa = xj.abs();
                 for ((a, s), &mij) in acc[full..]
@@ -685,14 +675,6 @@ impl<T: Scalar> pulp::WithSimd for EndResidualPass<'_, '_, T> {
                     *a += mij * xj;
                     *s = (*s).max(mij.abs() * xa);
                 }
-            }
-            first = false;
-        }
-        if first {
-            // `z = 0`: the data alone
-            for r in 0..n {
-                acc[r] = q_s[r] + lambda * d_s[r];
-                big[r] = q_s[r].abs().max((lambda * d_s[r]).abs());
             }
         }
         let (acc, big) = (&acc[..n], &big[..n]);
