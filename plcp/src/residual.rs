@@ -565,6 +565,73 @@ pub fn measure_ends<T: Scalar>(problem: &Plcp<T>, path: &mut Path<T>) {
     path.info.residual = worst;
 }
 
+/// [`measure_ends`], and where its numbers cannot decide the residual guard,
+/// the whole path on `problem` ([`measure_path`], both ends of every segment):
+/// the guard then reads the documented residual of every point the user gets.
+///
+/// [`measure_ends`] measures the start, the end and the sign parts of every
+/// segment end on `problem`, but the equation part at the segments' inner
+/// ends only as the trace measured it, on the scaled system and relative to
+/// a floor of one there. The same point's equation residual by
+/// [`residual`]'s rule (relative to `max(U, own terms)`, `U` the data's unit)
+/// is at most `kappa` times that, `kappa = max(2, max_r 1 / (R_r U))`
+/// (`R_r` the row scales the trace ran with, all one on an unscaled trace;
+/// the `2`: the trace's row terms hold `|(B x)_r| = |q_r + L d_r|`, at most
+/// twice the larger of `|q_r|`, `|L d_r|`). So the cheap measure decides
+/// when [`crate::tolerance::GUARD_SLACK`] times `kappa` times the breakpoints'
+/// largest equation residual and its other parts are below `sqrt(eps)`; else
+/// the path is measured whole and `path.info.residual` is the larger of the
+/// two measures. A path the cheap measure already fails is left to fail (the
+/// guard only ever becomes stricter). `rows`: the trace's row scales, or
+/// `None` where unknown (a spliced path: then `kappa` is the larger of the
+/// unscaled one and the one of the Ruiz scales the trace computes). A
+/// streamed path whose segments were not kept cannot be measured again:
+/// it keeps the cheap measure.
+///
+/// Found by `prop_path.rs f32_p_matrix` (2026-11-27): the trace reported
+/// `3.44e-4`, below f32's `sqrt(eps) = 3.45e-4`, and the delivered start of
+/// a segment had residual `3.49e-4` (`1.25e-4` absolute in a row whose own
+/// terms are below `U = 0.36`; the trace divided by its floor of one).
+pub(crate) fn measure_for_guard<T: Scalar>(
+    problem: &Plcp<T>,
+    path: &mut Path<T>,
+    rows: Option<&[f64]>,
+) {
+    measure_ends(problem, path);
+    if crate::observe::emitted_ends::<T>().is_some() {
+        return;
+    }
+    let limit = T::eps().to_f64().sqrt();
+    let cheap = path.info.residual;
+    let bp_eq = path
+        .breakpoints
+        .iter()
+        .fold(0.0f64, |a, b| a.max(b.residual.equation));
+    // (NaN or above the limit: the guard fails the path as it is)
+    let worst = cheap.worst();
+    if worst.is_nan() || worst > limit || bp_eq == 0.0 {
+        return;
+    }
+    let unit = residual_unit(problem.q(), problem.d());
+    let kappa_of = |rows: &[f64]| rows.iter().fold(2.0f64, |a, &r| a.max(1.0 / (r * unit)));
+    let slack = crate::tolerance::GUARD_SLACK;
+    let decided = |kappa: f64| slack * kappa * bp_eq <= limit;
+    let kappa_unscaled = 2.0f64.max(1.0 / unit);
+    let whole = match rows {
+        Some(rows) => !decided(kappa_of(rows)),
+        None => {
+            !decided(kappa_unscaled)
+                || !decided(kappa_of(
+                    &crate::scaling::Equilibration::ruiz(problem, 8).rows,
+                ))
+        }
+    };
+    if whole {
+        measure_path(problem, path, true);
+        path.info.residual = path.info.residual.max(cheap);
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -53,10 +53,22 @@ pub(crate) fn guard_residual<T: Scalar>(path: &mut Path<T>) {
 }
 
 pub(crate) fn measure<T: Scalar>(problem: &Plcp<T>, path: &mut Path<T>, whole: bool) {
+    measure_scaled(problem, path, whole, None);
+}
+
+/// [`measure`] of a path traced with row scales `rows` (`None`: not known
+/// here), which bound how far the trace's own breakpoint residuals may be
+/// below the documented measure ([`residual::measure_for_guard`]).
+fn measure_scaled<T: Scalar>(
+    problem: &Plcp<T>,
+    path: &mut Path<T>,
+    whole: bool,
+    rows: Option<&[f64]>,
+) {
     if whole {
         residual::measure_path(problem, path, true);
     } else {
-        residual::measure_ends(problem, path);
+        residual::measure_for_guard(problem, path, rows);
     }
 }
 
@@ -106,7 +118,8 @@ fn trace_unguarded<T: Scalar>(
             Method::Lemke => lemke::solve(problem, settings)?,
             Method::Wolfe => wolfe::solve(problem, settings)?,
         };
-        measure(problem, &mut path, both_ends);
+        let ones = vec![1.0; problem.dim()];
+        measure_scaled(problem, &mut path, both_ends, Some(&ones));
         path.info.solve_seconds = timer.elapsed().as_secs_f64();
         return Ok(path);
     };
@@ -123,7 +136,7 @@ fn trace_unguarded<T: Scalar>(
         Method::Wolfe => wolfe::solve(&scaled, &scaled_settings)?,
     };
     eq.unscale(problem, &mut path);
-    measure(problem, &mut path, both_ends);
+    measure_scaled(problem, &mut path, both_ends, Some(&eq.rows));
     path.info.solve_seconds = timer.elapsed().as_secs_f64();
     Ok(path)
 }
