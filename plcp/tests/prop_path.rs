@@ -582,3 +582,74 @@ fn f64_psd_singular_skew_rate_rounding() {
     let cert = float.certify(&problem);
     assert!(cert.certified(), "{}", cert.summary());
 }
+
+/// The 8 x 8 singular PSD instance the seed of
+/// [`f64_psd_singular_skew_rate_rounding`] gives `f128_psd_singular`
+/// (2026-11-27): the exact path has two breakpoints at `L = 11129/1172`
+/// (a degenerate pivot); fx128 records a segment of rounding length there on
+/// a basis that is infeasible for every `L` (`certify` rejects segment 10),
+/// whose end has residual `6.4e-10`, and claims the ray (reported residual
+/// `6.4e-27`: the equation part at the segments' inner ends is not measured
+/// by the guard, and the breakpoints' are tiny). With the rate test of
+/// [`f64_psd_singular_skew_rate_rounding`]'s fix the property test passes on
+/// this instance. A success must hold by the documented residual of every
+/// segment end.
+#[test]
+#[ignore = "fails until the rate test of pivoting/trace.rs gets the pivots' entry-rounding test (docs/limits.md, 2026-11-27)"]
+fn f128_psd_singular_rounding_length_segment() {
+    let m = mat_from_rows(&[
+        vec![
+            0.015625, 0.078125, 0.109375, -0.03125, 0.046875, -0.0625, 0.109375, -0.109375,
+        ],
+        vec![
+            0.078125, 2.171875, 0.09375, -1.0, -1.140625, -0.671875, -0.21875, -0.078125,
+        ],
+        vec![
+            0.109375, 0.09375, 1.84375, -0.78125, 1.0, -0.625, 0.90625, -0.453125,
+        ],
+        vec![
+            -0.03125, -1.0, -0.78125, 1.1875, 0.28125, 0.3125, 0.4375, -0.625,
+        ],
+        vec![
+            0.046875, -1.140625, 1.0, 0.28125, 1.3125, 0.03125, 0.859375, -0.5,
+        ],
+        vec![
+            -0.0625, -0.671875, -0.625, 0.3125, 0.03125, 0.84375, -0.796875, 0.796875,
+        ],
+        vec![
+            0.109375, -0.21875, 0.90625, 0.4375, 0.859375, -0.796875, 1.734375, -1.6875,
+        ],
+        vec![
+            -0.109375, -0.078125, -0.453125, -0.625, -0.5, 0.796875, -1.6875, 1.84375,
+        ],
+    ]);
+    let inst = Instance {
+        m,
+        q: vec![
+            0.03125, 0.078125, 0.0, 0.5, 0.484375, 0.109375, 0.109375, 0.046875,
+        ],
+        d: vec![
+            0.0, -0.8125, -0.046875, 0.78125, -0.4375, -0.734375, 0.75, -0.828125,
+        ],
+        free: 0,
+        lambda0: 0.0,
+        lambda_max: None,
+        kind: Kind::PsdSingularSymmetric,
+    };
+    let problem = inst.plcp::<faer::fx128>();
+    let path = plcp::solve(&problem, &Settings::default()).unwrap();
+    let mut whole = path.clone();
+    plcp::residual::measure_path(&problem, &mut whole, true);
+    let limit = <faer::fx128 as Scalar>::eps().to_f64().sqrt();
+    if path.status.is_success() {
+        assert!(
+            whole.info.residual.worst() <= limit,
+            "{:?} with residual {:e} on the delivered segments (reported {:e})",
+            path.status,
+            whole.info.residual.worst(),
+            path.info.residual.worst()
+        );
+        let cert = path.certify(&problem);
+        assert!(cert.certified(), "{}", cert.summary());
+    }
+}
