@@ -86,6 +86,12 @@ pub mod tolerance;
 mod trace;
 mod wolfe;
 
+/// Test hook (not part of the API): while on, the lexicographic rule also
+/// breaks every tie the way it did before issue 15's change and panics on a
+/// different choice (`PLCP_LEX_CHECK=1` turns it on for a whole process);
+/// returns the number of ties checked so far on the calling thread.
+#[doc(hidden)]
+pub use basis::lex::set_check as lex_check;
 pub use error::PlcpError;
 pub use escalate::Escalation;
 pub use exact::{certify, Certificate};

@@ -31,10 +31,12 @@
 
 mod block;
 mod dense;
+pub(crate) mod lex;
 mod sparse;
 
 pub(crate) use block::BlockInverse;
 pub(crate) use dense::DenseInverse;
+pub(crate) use lex::InverseRows;
 pub(crate) use sparse::SparseLu;
 
 use crate::linalg::{matmul_par_into, matvec, matvec_into, matvec_into_mut, par_for};
@@ -224,10 +226,19 @@ pub(crate) trait BasisFactor<T: Scalar> {
     }
     /// `B^{-1} e_k`.
     fn unit(&self, k: usize) -> Col<T>;
-    /// Rows `rows` of `B^{-1}` (each indexed by system row), if this
-    /// representation computes them cheaper than the columns `B^{-1} e_k` the
-    /// lexicographic rule otherwise reads one by one; `None`: read columns.
-    fn inverse_rows(&self, rows: &[usize]) -> Option<Vec<Col<T>>> {
+    /// Rows `rows` of `B^{-1}` (read by system row, see [`InverseRows`]), if
+    /// this representation computes them cheaper than the columns `B^{-1}
+    /// e_k` the lexicographic rule otherwise reads one by one; `None`: read
+    /// columns.
+    fn inverse_rows(&self, rows: &[usize]) -> Option<InverseRows<'_, T>> {
+        let _ = rows;
+        None
+    }
+    /// [`Self::inverse_rows`] as they were computed before issue 15's
+    /// change (each row in full, in system order, through faer's solves,
+    /// its noise set to zero): the reference of the lexicographic check
+    /// ([`lex`]). `None` where [`Self::inverse_rows`] is `None`.
+    fn inverse_rows_full(&self, rows: &[usize]) -> Option<Vec<Col<T>>> {
         let _ = rows;
         None
     }

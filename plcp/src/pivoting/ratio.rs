@@ -138,64 +138,16 @@ impl<'a, T: Scalar> Engine<'a, T> {
         }
         let mut tied: Vec<usize> = (0..self.dim).filter(|&r| is_tied(r)).collect();
         if tied.len() > 1 {
-            // lexicographic rule: compare rows of B^{-1} / col_r, complementary columns first
-            let order: Vec<usize> = (self.p..self.dim).chain(0..self.p).collect();
-            // a factorisation may hand over the tied rows of B^{-1} at once
-            // (one transpose solve per tied row instead of a solve per column)
-            let inv_rows = self.factor.inverse_rows(&tied);
-            let first_tied = tied.clone();
-            for &k in &order {
-                if tied.len() == 1 {
-                    break;
-                }
-                let vals: Vec<T> = match &inv_rows {
-                    Some(rows) => tied
-                        .iter()
-                        .map(|&r| {
-                            let t = first_tied.iter().position(|&f| f == r).expect("tied row");
-                            rows[t][k] / col[r]
-                        })
-                        .collect(),
-                    None => {
-                        // entries of B^{-1} e_k at its rounding level (the
-                        // pivot tolerance's noise, relative to the column) are
-                        // zeros of the exact inverse: compared as such, else
-                        // rounding decides where the exact rule looks further
-                        // (tobenna: 29 tied rows whose entries in a column are
-                        // all exact zeros, computed as 1e-18 of noise)
-                        let inv_k = self.factor.unit(k);
-                        let zero = self.noise * col_max_abs(&inv_k);
-                        tied.iter()
-                            .map(|&r| {
-                                if inv_k[r].abs() <= zero {
-                                    T::zero()
-                                } else {
-                                    inv_k[r] / col[r]
-                                }
-                            })
-                            .collect()
-                    }
-                };
-                let vmin = vals.iter().fold(vals[0], |a, &b| a.min(b));
-                let vscale = vals.iter().fold(T::zero(), |a, &b| a.max(b.abs()));
-                let tol = self.tie_tol * vscale;
-                let kept: Vec<usize> = tied
-                    .iter()
-                    .zip(vals.iter())
-                    .filter(|(_, &v)| v - vmin <= tol)
-                    .map(|(&r, _)| r)
-                    .collect();
-                // non-finite entries compare false everywhere: keep the set then
-                if !kept.is_empty() {
-                    tied = kept;
-                }
-            }
-            // still tied (numerically): the largest pivot is the most stable
-            tied.sort_by(|&a, &b| {
-                col[b]
-                    .partial_cmp(&col[a])
-                    .unwrap_or(core::cmp::Ordering::Equal)
-            });
+            // lexicographic rule (crate::basis::lex)
+            tied = crate::basis::lex::break_tie(
+                &*self.factor,
+                col,
+                tied,
+                self.p,
+                self.dim,
+                self.tie_tol,
+                self.noise,
+            );
         }
         let r = *tied.first().unwrap_or(&first_cand.expect("a candidate"));
         let theta = self.x[r].max(T::zero()) / col[r];
