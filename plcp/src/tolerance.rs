@@ -20,7 +20,7 @@
 //! | idle refinement | the block basis pauses refining entering columns (then probes, pauses doubling to 64 solves) | [`REFINE_IDLE_RUN`] (`8`) corrections in a row `<= REFINE_IDLE_EPS * eps * max abs(y)` ([`REFINE_IDLE_EPS`] `= 64`) |
 //! | segment evaluation | [`crate::Segment::eval`] returns a negative `z` or `w` inside its segment as zero | `-v <= abs(slope) 64 eps max(1, abs(L)) + 64 eps abs(v_from)` and `-v > sqrt(eps) max(1, max abs(x))` |
 //! | residuals of points | reported ([`crate::residual::residual`]: start, end, `Path::at`, and every breakpoint for Lemke on a Schur reduction or on request, [`crate::residual::measure_path`]; the sign parts at both ends of every segment, [`crate::residual::segment_ends`]) | equation row `r` relative to `max(U, abs(q_r), abs(L d_r), abs(w_r), max_j abs(M_rj x_j))`, `U = min(max abs(q), max abs(d))` the data's unit ([`residual_unit`], no absolute floor); feasibility of `w` relative to `max(U, max abs(w))`, of `z` to `max(U / max abs(M_ij), max abs(z))` |
-//! | residual guard | a path that claims success is downgraded to `ill_conditioned`; the trace stops as `ill_conditioned` at a breakpoint whose residual (after refinement) fails it | largest reported residual `> sqrt(eps)`; where the breakpoints' equation residuals (scaled system, floor one) times `kappa = max(2, max_r 1 / (R_r U))` times [`GUARD_SLACK`] reach `sqrt(eps)`, the whole path is measured on the original problem first ([`crate::residual::measure_for_guard`]) |
+//! | residual guard | a path that claims success is downgraded to `ill_conditioned`; the trace stops as `ill_conditioned` at a breakpoint whose residual (after refinement) fails it | largest reported residual `> sqrt(eps)`; where the breakpoints' equation residuals (scaled system, floor one) times `kappa = max(2, max_r 1 / (R_r U))` times [`GUARD_SLACK`] reach `sqrt(eps)`, the whole path is measured on the original problem first (`residual::measure_for_guard`) |
 //! | reduction ties | Lemke on the Schur reduction of a mixed problem: the tie tolerance of the reduced path | `tie_tol_eps` times [`reduction_tie_factor`] (`cond(F)`, at least 1, and the product at most `sqrt(eps)`) |
 //! | covering vector | the start phase's covering vector `c` is brought by a power of two to the scale of the right-hand side, so the artificial variable is dimensionless | `c * 2^(e(max abs(q + L0 d)) - e(max c))`, `e` the binary exponent |
 //! | infeasibility certificate | the start phase's ray proves `infeasible` (`src/evidence.rs`) | `v >= -CERT_EPS eps n max v`; `(M'v)_j <= CERT_EPS eps n sum_i abs(M_ij v_i)`; `(q + L0 d)'v < -CERT_EPS eps n sum_i abs((q + L0 d)_i v_i)` (`CERT_EPS = 1e3` in `src/evidence.rs`) |
@@ -74,7 +74,7 @@ pub fn residual_unit<T: Scalar>(q: faer::ColRef<'_, T>, d: faer::ColRef<'_, T>) 
 }
 
 /// The margin of the residual guard's cheap measure
-/// ([`crate::residual::measure_for_guard`]): the trace's breakpoint residuals
+/// (`residual::measure_for_guard`): the trace's breakpoint residuals
 /// bound the documented residual of the segments' starts (times `kappa`,
 /// derived there), not of their ends, which are evaluated `z_from + dz dL`;
 /// a factor two covers that evaluation (measured: the end of the segment of
