@@ -7,6 +7,8 @@
 //! cantilevers (sections tied at every hinge event) and on random
 //! degenerate sparse problems; each case must meet ties.
 
+mod common;
+
 use faer::{Col, Mat};
 use frames::{Scene, System};
 use plcp::matrix::Csc;
@@ -31,12 +33,7 @@ fn scenes() -> Vec<Scene> {
         .map(|p| Scene::from_file(p).expect("valid scene"))
         .collect();
     for n in [20, 100, 250] {
-        let src = format!(
-            "[[node]]\nid = \"A\"\nx = 0.0\ny = 0.0\n[[node]]\nid = \"B\"\nx = 1.0\ny = 0.0\n\
-             [[member]]\nid = \"AB\"\nfrom = \"A\"\nto = \"B\"\nplastic_moment = 1.0\nmass_per_length = 1.0\nelements = {n}\n\
-             [[support]]\nnode = \"A\"\nfix = [\"x\", \"y\", \"rz\"]\n[[load]]\nnode = \"B\"\nfy = 1.0\n"
-        );
-        out.push(Scene::from_toml(&src, &format!("cantilever-{n}.toml")).expect("valid scene"));
+        out.push(common::cantilever(n, 1.0));
     }
     out
 }
