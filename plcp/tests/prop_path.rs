@@ -559,7 +559,6 @@ fn f32_guard_measures_the_delivered_segments() {
 /// until the rate gets the entry-rounding test the pivots have
 /// (`docs/limits.md`).
 #[test]
-#[ignore = "fails until the rate test of pivoting/trace.rs gets the pivots' entry-rounding test (docs/limits.md, 2026-11-27)"]
 fn f64_psd_singular_skew_rate_rounding() {
     let m = faer::mat![
         [0.0, -0.75, 1.0, -0.375],
@@ -595,7 +594,6 @@ fn f64_psd_singular_skew_rate_rounding() {
 /// this instance. A success must hold by the documented residual of every
 /// segment end.
 #[test]
-#[ignore = "fails until the rate test of pivoting/trace.rs gets the pivots' entry-rounding test (docs/limits.md, 2026-11-27)"]
 fn f128_psd_singular_rounding_length_segment() {
     let m = mat_from_rows(&[
         vec![

@@ -36,7 +36,7 @@ impl<'a, T: Scalar> Engine<'a, T> {
     /// backward-stable solve may get wrong in `y_r`, per unit roundoff
     /// (componentwise, Oettli-Prager). One transpose solve and a pass over the
     /// basic columns, spent only on small pivots.
-    fn entry_rounding(&self, r: usize, y: &Col<T>) -> T {
+    pub(super) fn entry_rounding(&self, r: usize, y: &Col<T>) -> T {
         let mut e = Col::<T>::zeros(self.dim);
         e[r] = T::one();
         let row = self.factor.solve_transpose(&e);

@@ -78,8 +78,20 @@ impl<'a, T: Scalar> Engine<'a, T> {
             // that (f32 at condition ~1e5) is not trusted to rise either: its
             // ratio test could not see a block, so it ends as a stop)
             let rate_tol = self.noise * colmax.max(T::one());
-            let rising = rate > rate_tol;
-            let moving = rate.abs() > rate_tol;
+            let mut rising = rate > rate_tol;
+            let mut moving = rate.abs() > rate_tol;
+            // a small rate must also stand above its entry's componentwise
+            // rounding (the pivots' test, ratio.rs): a skew 4 x 4 problem
+            // had an exact zero computed as 7.8e-14 against a tolerance of
+            // 7.6e-14, and f64 claimed a ray on a singular basis
+            if moving && driver != Var::Lambda && rate.abs() <= T::eps().sqrt() * colmax {
+                if let Some(l) = self.row_of(Var::Lambda) {
+                    if rate.abs() <= self.pivot_tol * self.entry_rounding(l, &col) {
+                        rising = false;
+                        moving = false;
+                    }
+                }
+            }
             if !col_slice(&col)
                 .iter()
                 .zip(col_slice(&self.x))
