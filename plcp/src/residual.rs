@@ -565,6 +565,17 @@ pub fn measure_ends<T: Scalar>(problem: &Plcp<T>, path: &mut Path<T>) {
     path.info.residual = worst;
 }
 
+/// The row scales a trace ran with, as [`measure_for_guard`] reads them.
+#[derive(Clone, Copy, Debug)]
+pub(crate) enum RowScales<'a> {
+    /// Not known here (a spliced path).
+    Unknown,
+    /// All one: the trace ran on the unscaled problem.
+    Ones,
+    /// The trace's row scales `R` (length `p + n`).
+    Scaled(&'a [f64]),
+}
+
 /// [`measure_ends`], and where its numbers cannot decide the residual guard,
 /// the whole path on `problem` ([`measure_path`], both ends of every segment):
 /// the guard then reads the documented residual of every point the user gets.
@@ -582,9 +593,9 @@ pub fn measure_ends<T: Scalar>(problem: &Plcp<T>, path: &mut Path<T>) {
 /// largest equation residual and its other parts are below `sqrt(eps)`; else
 /// the path is measured whole and `path.info.residual` is the larger of the
 /// two measures. A path the cheap measure already fails is left to fail (the
-/// guard only ever becomes stricter). `rows`: the trace's row scales, or
-/// `None` where unknown (a spliced path: then `kappa` is the larger of the
-/// unscaled one and the one of the Ruiz scales the trace computes). A
+/// guard only ever becomes stricter). `rows`: the trace's row scales
+/// ([`RowScales`]; where unknown, as on a spliced path, `kappa` is the larger
+/// of the unscaled one and the one of the Ruiz scales the trace computes). A
 /// streamed path whose segments were not kept cannot be measured again:
 /// it keeps the cheap measure.
 ///
@@ -595,7 +606,7 @@ pub fn measure_ends<T: Scalar>(problem: &Plcp<T>, path: &mut Path<T>) {
 pub(crate) fn measure_for_guard<T: Scalar>(
     problem: &Plcp<T>,
     path: &mut Path<T>,
-    rows: Option<&[f64]>,
+    rows: RowScales<'_>,
 ) {
     measure_ends(problem, path);
     if crate::observe::emitted_ends::<T>().is_some() {
@@ -618,8 +629,14 @@ pub(crate) fn measure_for_guard<T: Scalar>(
     let decided = |kappa: f64| slack * kappa * bp_eq <= limit;
     let kappa_unscaled = 2.0f64.max(1.0 / unit);
     let whole = match rows {
-        Some(rows) => !decided(kappa_of(rows)),
-        None => {
+        // `kappa_of` of `dim` ones, without the vector
+        RowScales::Ones => !decided(if problem.dim() == 0 {
+            2.0
+        } else {
+            kappa_unscaled
+        }),
+        RowScales::Scaled(rows) => !decided(kappa_of(rows)),
+        RowScales::Unknown => {
             !decided(kappa_unscaled)
                 || !decided(kappa_of(
                     &crate::scaling::Equilibration::ruiz(problem, 8).rows,

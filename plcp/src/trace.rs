@@ -8,6 +8,7 @@
 use crate::error::PlcpError;
 use crate::path::{Path, Status, Var};
 use crate::problem::Plcp;
+use crate::residual::RowScales;
 use crate::scalar::Scalar;
 use crate::settings::{Method, Settings};
 use crate::{lemke, residual, scaling, wolfe};
@@ -53,17 +54,17 @@ pub(crate) fn guard_residual<T: Scalar>(path: &mut Path<T>) {
 }
 
 pub(crate) fn measure<T: Scalar>(problem: &Plcp<T>, path: &mut Path<T>, whole: bool) {
-    measure_scaled(problem, path, whole, None);
+    measure_scaled(problem, path, whole, RowScales::Unknown);
 }
 
-/// [`measure`] of a path traced with row scales `rows` (`None`: not known
-/// here), which bound how far the trace's own breakpoint residuals may be
-/// below the documented measure ([`residual::measure_for_guard`]).
+/// [`measure`] of a path traced with row scales `rows`, which bound how far
+/// the trace's own breakpoint residuals may be below the documented measure
+/// ([`residual::measure_for_guard`]).
 fn measure_scaled<T: Scalar>(
     problem: &Plcp<T>,
     path: &mut Path<T>,
     whole: bool,
-    rows: Option<&[f64]>,
+    rows: RowScales<'_>,
 ) {
     if whole {
         residual::measure_path(problem, path, true);
@@ -97,29 +98,24 @@ fn trace_unguarded<T: Scalar>(
         }
     }
     let timer = std::time::Instant::now();
-    let eq = if settings.scaling {
-        scaling::Equilibration::ruiz(problem, 8)
-    } else {
-        scaling::Equilibration {
-            rows: vec![1.0; problem.dim()],
-            cols: vec![1.0; problem.dim()],
-        }
-    };
-    let scaled = if eq.is_identity() {
-        None
-    } else {
-        eq.scale(problem)
-    };
+    // no scales (none asked for, all one, or the scaled data overflow): the
+    // trace runs on `problem` itself
+    let eq = settings
+        .scaling
+        .then(|| scaling::Equilibration::ruiz(problem, 8));
+    let scaled = eq
+        .as_ref()
+        .filter(|eq| !eq.is_identity())
+        .and_then(|eq| Some((eq, eq.scale(problem)?)));
     // segments of Lemke on the Schur reduction are re-solved one by one on the
     // unreduced system: measure both ends of each
     let both_ends = settings.method == Method::Lemke && problem.free() > 0;
-    let Some(scaled) = scaled else {
+    let Some((eq, scaled)) = scaled else {
         let mut path = match settings.method {
             Method::Lemke => lemke::solve(problem, settings)?,
             Method::Wolfe => wolfe::solve(problem, settings)?,
         };
-        let ones = vec![1.0; problem.dim()];
-        measure_scaled(problem, &mut path, both_ends, Some(&ones));
+        measure_scaled(problem, &mut path, both_ends, RowScales::Ones);
         path.info.solve_seconds = timer.elapsed().as_secs_f64();
         return Ok(path);
     };
@@ -136,7 +132,7 @@ fn trace_unguarded<T: Scalar>(
         Method::Wolfe => wolfe::solve(&scaled, &scaled_settings)?,
     };
     eq.unscale(problem, &mut path);
-    measure_scaled(problem, &mut path, both_ends, Some(&eq.rows));
+    measure_scaled(problem, &mut path, both_ends, RowScales::Scaled(&eq.rows));
     path.info.solve_seconds = timer.elapsed().as_secs_f64();
     Ok(path)
 }
