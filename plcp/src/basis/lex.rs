@@ -126,17 +126,10 @@ pub(crate) fn break_tie<T: Scalar>(
     // a factorisation may hand over the tied rows of B^{-1} at once
     // (one transpose solve per tied row instead of a solve per column)
     let rows = factor.inverse_rows(&tied);
-    let out = compare(
-        factor,
-        col,
-        tied.clone(),
-        p,
-        dim,
-        tie_tol,
-        noise,
-        rows.as_ref(),
-    );
-    if rows.is_some() && check_on() {
+    // the tie as handed over, kept only for the check (off: no copy)
+    let checked = (rows.is_some() && check_on()).then(|| tied.clone());
+    let out = compare(factor, col, tied, p, dim, tie_tol, noise, rows.as_ref());
+    if let Some(tied) = checked {
         let full = factor.inverse_rows_full(&tied);
         if let (Some(new), Some(old)) = (&rows, &full) {
             for (t, row) in old.iter().enumerate() {
