@@ -82,6 +82,8 @@ pub mod scaling;
 mod settings;
 mod solver;
 mod sparse_lu;
+#[cfg(test)]
+mod test_rng;
 pub mod tolerance;
 mod trace;
 mod wolfe;

@@ -661,13 +661,7 @@ mod tests {
     #[test]
     fn sign_lanes_give_the_plain_bits() {
         fn check<T: Scalar>() -> usize {
-            let mut state = 0x2545_f491_4f6c_dd1du64;
-            let mut next = move || {
-                state ^= state << 13;
-                state ^= state >> 7;
-                state ^= state << 17;
-                (state >> 11) as f64 / (1u64 << 53) as f64
-            };
+            let mut next = crate::test_rng::unit(0x2545_f491_4f6c_dd1d);
             let mut declined = 0;
             for case in 0..400 {
                 let n = 1 + case % 23;

@@ -737,13 +737,8 @@ mod tests {
     /// matrix).
     #[test]
     fn blocked_end_residual_gives_the_plain_bits() {
-        let mut state = 0x9e37_79b9_7f4a_7c15u64;
-        let mut next = move || {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            (state >> 11) as f64 / (1u64 << 53) as f64 - 0.5
-        };
+        let mut unit = crate::test_rng::unit(0x9e37_79b9_7f4a_7c15);
+        let mut next = move || unit() - 0.5;
         let mut res = EndResidual::<f64>::default();
         let mut checked = 0;
         for (case, n) in [1usize, 2, 15, 16, 17, 31, 33, 50, 70]

@@ -493,13 +493,7 @@ mod tests {
     /// eight pivots, one to four rows at a time.
     #[test]
     fn lent_rows_read_as_the_full_rows() {
-        let mut state = 0x9e37_79b9_7f4a_7c15u64;
-        let mut next = move || {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            (state >> 11) as f64 / (1u64 << 53) as f64
-        };
+        let mut next = crate::test_rng::unit(0x9e37_79b9_7f4a_7c15);
         let mut compared = 0usize;
         for case in 0..40 {
             let n = 3 + case % 17;
