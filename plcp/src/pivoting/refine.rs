@@ -419,6 +419,16 @@ impl<'a, T: Scalar> Engine<'a, T> {
             // the basic right-hand side (see Self::rhs)
             let rhs = if l_nonbasic { q + ld } else { q };
             let r = (rhs - bx).abs();
+            // most rows end here, before the chain of `max` below, which
+            // would skip them too: with `r <= bound` no term is NaN but
+            // perhaps `big` (`r` holds `q`, `bx` and, with L nonbasic,
+            // `L d`; with L basic `L d` is asked to be finite), so `s` is
+            // NaN (skipped below) or at least one, and then `bound * s >=
+            // bound >= r` (rounding is monotone in f32 and f64; not relied
+            // on for the double-double f128)
+            if T::NATIVE && r <= bound && (l_nonbasic || ld.is_finite()) {
+                return;
+            }
             let mut s = T::one().max(q.abs()).max(ld.abs()).max(bx.abs());
             if let Some(big) = big {
                 s = s.max(big);
