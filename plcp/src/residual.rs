@@ -600,7 +600,10 @@ impl pulp::WithSimd for SignLanesF64<'_> {
         let down = |acc: S::f64s, v: S::f64s| simd.select_f64s(simd.less_than_f64s(v, acc), v, acc);
         let (mut mz, mut az, mut aw) = (zero, zero, zero);
         let (mut zmin, mut wmin, mut prod) = (zero, zero, zero);
-        let mut negzero = simd.less_than_f64s(zero, zero);
+        // (a lane set to one where a -0 was seen: the masks' layout differs
+        // between instruction sets, a u64 lane does not)
+        let (no, yes) = (simd.splat_u64s(0), simd.splat_u64s(1));
+        let mut negzero = no;
         let body = zf_v.iter().zip(dz_v).zip(wf_v.iter().zip(dw_v)).zip(cm_v);
         for (((&zf, &dz), (&wf, &dw)), &cm) in body {
             let z = simd.add_f64s(zf, simd.mul_f64s(dz, dl));
@@ -613,9 +616,9 @@ impl pulp::WithSimd for SignLanesF64<'_> {
             prod = up(prod, simd.abs_f64s(simd.mul_f64s(z, w)));
             let zb = simd.equal_u64s(simd.transmute_u64s_f64s(z), neg0);
             let wb = simd.equal_u64s(simd.transmute_u64s_f64s(w), neg0);
-            negzero = simd.or_m64s(negzero, simd.or_m64s(zb, wb));
+            negzero = simd.select_u64s(simd.or_m64s(zb, wb), yes, negzero);
         }
-        let neg_any = pulp::bytemuck::cast_slice::<S::m64s, u64>(std::slice::from_ref(&negzero))
+        let neg_any = pulp::bytemuck::cast_slice::<S::u64s, u64>(std::slice::from_ref(&negzero))
             .iter()
             .any(|&b| b != 0);
         let fold = |v: &S::f64s, f: fn(f64, f64) -> f64| {
