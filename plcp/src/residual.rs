@@ -468,6 +468,21 @@ impl<T: Scalar> pulp::WithSimd for SignsPass<'_, T> {
                 acc
             }
         }
+        // f64: the same lanes in explicit vector operations (LLVM's SLP
+        // vectoriser packed the loop below as (z, w) pairs with scalar
+        // negative-zero tests and branches, about 34 instructions an entry)
+        if let Some(s) = (seg as &dyn std::any::Any).downcast_ref::<Segment<f64>>() {
+            let lanes = SignLanesF64 {
+                zf: slice(&s.z_from),
+                dz: slice(&s.dz),
+                wf: slice(&s.w_from),
+                dw: slice(&s.dw),
+                col_max,
+                dl: dl.to_f64(),
+            };
+            let [mz, az, aw, zmin, wmin, prod] = pulp::Arch::new().dispatch(lanes)?;
+            return finish_signs(units, seg, lambda, [mz, az, aw, prod], zmin, wmin);
+        }
         // (chunks of the five vectors: no index checks in the lanes' body)
         let chunks = zf
             .chunks_exact(L)
@@ -504,27 +519,132 @@ impl<T: Scalar> pulp::WithSimd for SignsPass<'_, T> {
         let fold = |v: [f64; L], f: fn(f64, f64) -> f64| v.into_iter().fold(v[0], f);
         let low = |a: f64, b: f64| if b < a { b } else { a };
         let (zmin, wmin) = (fold(zmin, low), fold(wmin, low));
-        let floor = -T::eps().sqrt().to_f64();
-        if seg.contains(lambda) && (zmin < floor || wmin < floor) {
-            return None;
-        }
-        let (mz, az, aw, prod) = (
+        let maxima = [
             fold(mz, f64::max),
             fold(az, f64::max),
             fold(aw, f64::max),
             fold(prod, f64::max),
+        ];
+        finish_signs(units, seg, lambda, maxima, zmin, wmin)
+    }
+}
+
+/// The sign parts from [`SignsPass`]'s folded lanes (`maxima`: `mz`, `az`,
+/// `aw`, `prod`), or `None` where the clamp of [`Segment::eval`] applies.
+fn finish_signs<T: Scalar>(
+    units: &SignUnits,
+    seg: &Segment<T>,
+    lambda: T,
+    maxima: [f64; 4],
+    zmin: f64,
+    wmin: f64,
+) -> Option<Residual> {
+    let floor = -T::eps().sqrt().to_f64();
+    if seg.contains(lambda) && (zmin < floor || wmin < floor) {
+        return None;
+    }
+    let [mz, az, aw, prod] = maxima;
+    let z_unit = if mz > 0.0 {
+        units.unit / mz
+    } else {
+        units.unit
+    };
+    let (sz, sw) = (z_unit.max(az), units.unit.max(aw));
+    Some(Residual {
+        equation: 0.0,
+        feasibility: (-zmin / sz).max(-wmin / sw).max(0.0),
+        complementarity: prod / (sz * sw),
+    })
+}
+
+/// [`SignsPass`]'s lanes for `f64` in explicit vector operations: per
+/// entry `z = zf + dz dL`, `w = wf + dw dL` (a product, then a sum: no
+/// fused multiply-add, the plain pass's roundings), the maxima by a select
+/// on `v > acc` and the minima on `v < acc` (NaNs skipped, as `max`/`min`
+/// skip them), `z != 0` picking the column's `max |M_ij|`. Gives `[mz, az,
+/// aw, zmin, wmin, prod]` folded over the lanes (no accumulator is NaN or
+/// `-0`, so any order of the fold gives the same value), or `None` where an
+/// entry of `z` or `w` is `-0` (tested by its bits).
+struct SignLanesF64<'a> {
+    zf: &'a [f64],
+    dz: &'a [f64],
+    wf: &'a [f64],
+    dw: &'a [f64],
+    col_max: &'a [f64],
+    dl: f64,
+}
+
+impl pulp::WithSimd for SignLanesF64<'_> {
+    type Output = Option<[f64; 6]>;
+
+    #[inline(always)]
+    fn with_simd<S: pulp::Simd>(self, simd: S) -> Self::Output {
+        let n = self.zf.len();
+        let (zf, dz, wf, dw, cm) = (
+            &self.zf[..n],
+            &self.dz[..n],
+            &self.wf[..n],
+            &self.dw[..n],
+            &self.col_max[..n],
         );
-        let z_unit = if mz > 0.0 {
-            units.unit / mz
-        } else {
-            units.unit
+        let (zf_v, zf_t) = S::as_simd_f64s(zf);
+        let (dz_v, dz_t) = S::as_simd_f64s(dz);
+        let (wf_v, wf_t) = S::as_simd_f64s(wf);
+        let (dw_v, dw_t) = S::as_simd_f64s(dw);
+        let (cm_v, cm_t) = S::as_simd_f64s(cm);
+        let zero = simd.splat_f64s(0.0);
+        let dl = simd.splat_f64s(self.dl);
+        let neg0 = simd.splat_u64s(0x8000_0000_0000_0000);
+        let up =
+            |acc: S::f64s, v: S::f64s| simd.select_f64s(simd.greater_than_f64s(v, acc), v, acc);
+        let down = |acc: S::f64s, v: S::f64s| simd.select_f64s(simd.less_than_f64s(v, acc), v, acc);
+        let (mut mz, mut az, mut aw) = (zero, zero, zero);
+        let (mut zmin, mut wmin, mut prod) = (zero, zero, zero);
+        // (a lane set to one where a -0 was seen: the masks' layout differs
+        // between instruction sets, a u64 lane does not)
+        let (no, yes) = (simd.splat_u64s(0), simd.splat_u64s(1));
+        let mut negzero = no;
+        let body = zf_v.iter().zip(dz_v).zip(wf_v.iter().zip(dw_v)).zip(cm_v);
+        for (((&zf, &dz), (&wf, &dw)), &cm) in body {
+            let z = simd.add_f64s(zf, simd.mul_f64s(dz, dl));
+            let w = simd.add_f64s(wf, simd.mul_f64s(dw, dl));
+            mz = up(mz, simd.select_f64s(simd.equal_f64s(z, zero), zero, cm));
+            az = up(az, simd.abs_f64s(z));
+            aw = up(aw, simd.abs_f64s(w));
+            zmin = down(zmin, z);
+            wmin = down(wmin, w);
+            prod = up(prod, simd.abs_f64s(simd.mul_f64s(z, w)));
+            let zb = simd.equal_u64s(simd.transmute_u64s_f64s(z), neg0);
+            let wb = simd.equal_u64s(simd.transmute_u64s_f64s(w), neg0);
+            negzero = simd.select_u64s(simd.or_m64s(zb, wb), yes, negzero);
+        }
+        let neg_any = pulp::bytemuck::cast_slice::<S::u64s, u64>(std::slice::from_ref(&negzero))
+            .iter()
+            .any(|&b| b != 0);
+        let fold = |v: &S::f64s, f: fn(f64, f64) -> f64| {
+            let l = pulp::bytemuck::cast_slice::<S::f64s, f64>(std::slice::from_ref(v));
+            l.iter().fold(l[0], |a, &b| f(a, b))
         };
-        let (sz, sw) = (z_unit.max(az), units.unit.max(aw));
-        Some(Residual {
-            equation: 0.0,
-            feasibility: (-zmin / sz).max(-wmin / sw).max(0.0),
-            complementarity: prod / (sz * sw),
-        })
+        let hi = |a: f64, b: f64| if b > a { b } else { a };
+        let lo = |a: f64, b: f64| if b < a { b } else { a };
+        let (mut mz, mut az, mut aw) = (fold(&mz, hi), fold(&az, hi), fold(&aw, hi));
+        let (mut zmin, mut wmin, mut prod) = (fold(&zmin, lo), fold(&wmin, lo), fold(&prod, hi));
+        let mut neg_any = neg_any;
+        let tail = zf_t.iter().zip(dz_t).zip(wf_t.iter().zip(dw_t)).zip(cm_t);
+        for (((&zf, &dz), (&wf, &dw)), &cm) in tail {
+            let (z, w) = (zf + dz * self.dl, wf + dw * self.dl);
+            mz = hi(mz, if z != 0.0 { cm } else { 0.0 });
+            az = hi(az, z.abs());
+            aw = hi(aw, w.abs());
+            zmin = lo(zmin, z);
+            wmin = lo(wmin, w);
+            prod = hi(prod, (z * w).abs());
+            neg_any |= z.to_bits() == 0x8000_0000_0000_0000 || w.to_bits() == 0x8000_0000_0000_0000;
+        }
+        if neg_any {
+            return None;
+        }
+        Some([mz, az, aw, zmin, wmin, prod])
     }
 }
 
@@ -545,12 +665,26 @@ pub fn measure_ends<T: Scalar>(problem: &Plcp<T>, path: &mut Path<T>) {
     if let Some(r) = crate::observe::emitted_ends::<T>() {
         worst = worst.max(r);
     }
+    // on a dense `M` without free variables, the blocked pass of the
+    // solver's end residual: [`residual`]'s operations in its order on
+    // every row, so its bits (`solver.rs`, test
+    // `blocked_end_residual_gives_the_plain_bits`), compiled for the
+    // machine's vector width; `residual`'s sweep is not vectorised at the
+    // crate's baseline target (n = 100: about 68 k instructions a point
+    // against 21 k)
+    let mut blocked = crate::solver::EndResidual::<T>::default();
+    let mut measure = |point: &Point<T>| match problem.matrix() {
+        MatrixRef::Dense(m) if problem.free() == 0 => {
+            blocked.measure(m, problem.q(), problem.d(), point)
+        }
+        _ => residual(problem, point),
+    };
     if let Some(s) = path.segments.first() {
-        worst = worst.max(residual(problem, &s.eval(s.lambda_from)));
+        worst = worst.max(measure(&s.eval(s.lambda_from)));
     }
     if let Some(s) = path.segments.last() {
         if !s.unbounded && s.lambda_to.is_finite() {
-            worst = worst.max(residual(problem, &s.eval(s.lambda_to)));
+            worst = worst.max(measure(&s.eval(s.lambda_to)));
         }
     }
     if !path.segments.is_empty() {
@@ -560,7 +694,7 @@ pub fn measure_ends<T: Scalar>(problem: &Plcp<T>, path: &mut Path<T>) {
         }
     }
     if path.end.lambda.is_finite() {
-        worst = worst.max(residual(problem, &path.end));
+        worst = worst.max(measure(&path.end));
     }
     path.info.residual = worst;
 }

@@ -503,8 +503,10 @@ const WARM_ORDER: usize = 64;
 /// runtime dispatch and with no allocation once the buffers have grown.
 /// The full check stays: it is what makes the step's status honest (the
 /// engine's own residuals are of the basic solution it computed, this one of
-/// the point handed to the caller).
-struct EndResidual<T: Scalar> {
+/// the point handed to the caller). Also the measure of a path's start and
+/// end points on a dense `M` without free variables
+/// ([`crate::residual::measure_ends`]).
+pub(crate) struct EndResidual<T: Scalar> {
     acc: Vec<T>,
     big: Vec<T>,
     colbuf: Vec<T>,
@@ -534,7 +536,7 @@ impl<T: Scalar> Default for EndResidual<T> {
 }
 
 impl<T: Scalar> EndResidual<T> {
-    fn measure(
+    pub(crate) fn measure(
         &mut self,
         m: MatRef<'_, T>,
         q: ColRef<'_, T>,
