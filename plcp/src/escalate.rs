@@ -459,6 +459,8 @@ fn splice<T: Scalar>(path: &mut Path<T>, k: usize, rest: Path<fx128>, esc: &mut 
     info.degenerate_pivots += rest.info.degenerate_pivots;
     info.refactorisations += rest.info.refactorisations;
     info.refinements += rest.info.refinements;
+    info.near_ties_resolved += rest.info.near_ties_resolved;
+    info.near_ties_unresolved += rest.info.near_ties_unresolved;
     info.turning_points += rest.info.turning_points;
     info.max_condition = info.max_condition.max(rest.info.max_condition);
     if !esc.warm {

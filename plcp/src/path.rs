@@ -406,6 +406,13 @@ pub struct Info {
     /// a [`crate::observe::CompactPath`] when one was kept): the memory model
     /// is in [`crate::observe`].
     pub path_bytes: usize,
+    /// Near ties of the minimum-ratio test (rows within the tie tolerance
+    /// whose ratios differ) that values refined with wide residuals put in
+    /// their exact order (issue 14, `docs/limits.md`).
+    pub near_ties_resolved: usize,
+    /// Near ties the refined values could not order within their error
+    /// bounds (the trace stopped `ill_conditioned` at the first).
+    pub near_ties_unresolved: usize,
 }
 
 /// A secondary or unbounded ray: the last point plus `t` times a direction, `t >= 0`.

@@ -331,28 +331,65 @@ fn certificate_drives_the_chain_f64_fx128_exact_to_reached() {
     let shorts: Vec<String> = exact.breakpoints.iter().map(plcp::exact::short).collect();
     assert_eq!(shorts[..3], ["1", "3/2", "5/2"], "{shorts:?}");
     assert_eq!(shorts[4], "4", "{shorts:?}");
-    // the case: both float paths claim reached, both are rejected
+    // the case: both float paths used to claim reached on a wrong path (the
+    // certificate rejected both); the tracer now reads the near ties again
+    // with refined values and refuses what it cannot order
     let plain = plcp::solve(&problem, &Settings::default()).unwrap();
+    println!("f64: {} {}", plain.status.as_str(), plain.message);
+    // f64 now orders the near tie at L = 1.5 (w_1 leaves first, resolved by
+    // the refined ratios), but still reports reached on a wrong path: the
+    // block of w_2 = delta (2.5 - L) at 2.5 is lost to the pivot tolerance
+    // (its entry, delta = 1.4e-14, below the noise level of a column of one):
+    // not a tie; a remaining defect (docs/limits.md), caught by the
+    // certificate only
+    assert_eq!(plain.info.near_ties_resolved, 1, "{:?}", plain.info);
     assert_eq!(plain.status, Status::Reached, "{}", plain.message);
     let c = plain.certify(&problem);
+    assert!(c.summary().contains("5/2"), "{}", c.summary());
     assert_eq!(
         c.failure.as_ref().expect("f64 wrong").segment,
         2,
         "{}",
         c.summary()
     );
+    // fx128 no longer claims success: its near tie on the Fibonacci block is
+    // undecided within the refined ratios' error bounds
     let wide = problem.cast::<fx128>();
     let plain128 = plcp::solve(&wide, &Settings::default()).unwrap();
-    assert_eq!(plain128.status, Status::Reached, "{}", plain128.message);
-    assert!(!plain128.certify(&wide).certified());
-    // with escalate the plain solve changes nothing (no basis looks bad)
+    println!("f128: {} {}", plain128.status.as_str(), plain128.message);
+    assert_eq!(
+        plain128.status,
+        Status::IllConditioned,
+        "{}",
+        plain128.message
+    );
+    assert!(
+        plain128.message.contains("near tie"),
+        "{}",
+        plain128.message
+    );
+    assert!(
+        plain128.info.near_ties_unresolved > 0,
+        "{:?}",
+        plain128.info
+    );
+    // and with escalate_exact the plain fx128 solve continues exactly to
+    // L_max, certified
+    let exact128 = Settings::<fx128> {
+        escalate: true,
+        escalate_exact: true,
+        ..Settings::default()
+    };
+    let esc = plcp::solve(&wide, &exact128).unwrap();
+    println!("f128 escalated: {} {}", esc.status.as_str(), esc.message);
+    assert_eq!(esc.status, Status::Reached, "{}", esc.message);
+    let c = esc.certify(&wide);
+    assert!(c.certified(), "{}", c.summary());
     let chain = Settings::<f64> {
         escalate: true,
         escalate_exact: true,
         ..Settings::default()
     };
-    let esc = plcp::solve(&problem, &chain).unwrap();
-    assert!(esc.info.escalation.is_none());
     // certified without escalation: refused, not a wrong success
     let refused = plcp::solve_certified(&problem, &Settings::default()).unwrap();
     assert_eq!(

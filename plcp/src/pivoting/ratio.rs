@@ -4,6 +4,14 @@
 
 use super::*;
 
+/// What [`Engine::read_near_tie`] makes of tied rows.
+enum NearTie<T> {
+    /// One row leaves first (exactly), at this step.
+    Separated(usize, T),
+    /// These rows stay tied (for the lexicographic rule).
+    Tied(Vec<usize>),
+}
+
 impl<'a, T: Scalar> Engine<'a, T> {
     /// The minimum-ratio test with the lexicographic rule. Returns the row and the step.
     ///
@@ -16,11 +24,14 @@ impl<'a, T: Scalar> Engine<'a, T> {
     /// refactorisation) let an entry of `7e-14` of a column of one, whose
     /// exact value is zero, block a secondary ray (`plcp/tests/prop_path.rs`,
     /// `f64_psd_singular_secondary_ray`).
-    pub(super) fn ratio_test(&self, col: &Col<T>) -> Option<(usize, T)> {
+    ///
+    /// `v` is the entering variable (`col = B^{-1} a_v`): rows that tie are
+    /// read again with refined values ([`Self::read_near_tie`]).
+    pub(super) fn ratio_test(&self, col: &Col<T>, v: Var) -> Option<(usize, T)> {
         let small = T::eps().sqrt() * col_max_abs(col);
         let mut excluded: Vec<usize> = Vec::new();
         loop {
-            let (r, theta) = self.ratio_test_excluding(col, &excluded)?;
+            let (r, theta) = self.ratio_test_excluding(col, v, &excluded)?;
             let entry = col[r].abs();
             if entry > small
                 || matches!(self.basis[r], Var::Artificial(_))
@@ -62,7 +73,7 @@ impl<'a, T: Scalar> Engine<'a, T> {
     }
 
     /// [`Self::ratio_test`] with the rows `excluded` no candidates.
-    fn ratio_test_excluding(&self, col: &Col<T>, excluded: &[usize]) -> Option<(usize, T)> {
+    fn ratio_test_excluding(&self, col: &Col<T>, v: Var, excluded: &[usize]) -> Option<(usize, T)> {
         let colmax = col_max_abs(col);
         if colmax == T::zero() {
             return None;
@@ -137,6 +148,13 @@ impl<'a, T: Scalar> Engine<'a, T> {
             return Some((r, theta));
         }
         let mut tied: Vec<usize> = (0..self.dim).filter(|&r| is_tied(r)).collect();
+        // the tie window is wide (it absorbs the rounding of values that may
+        // have lost digits): the rows are read again with refined values,
+        // and those the refinement separates leave in their exact order
+        match self.read_near_tie(v, col, &tied, xnorm) {
+            NearTie::Separated(r, theta) => return Some((r, theta)),
+            NearTie::Tied(rows) => tied = rows,
+        }
         if tied.len() > 1 {
             // lexicographic rule (crate::basis::lex)
             tied = crate::basis::lex::break_tie(
@@ -152,6 +170,96 @@ impl<'a, T: Scalar> Engine<'a, T> {
         let r = *tied.first().unwrap_or(&first_cand.expect("a candidate"));
         let theta = self.x[r].max(T::zero()) / col[r];
         Some((r, theta))
+    }
+
+    /// Rows `tied` of the minimum-ratio test (within the tie tolerance) read
+    /// again with refined values and column entries ([`Self::refined_ratios`],
+    /// each ratio with an error bound; issue 14: the block
+    /// `[[1, 1], [1, 1 + 2^-46]]` has two breakpoints `1.4e-14` apart, well
+    /// inside f64's tie window, and the lexicographic rule took the later one
+    /// first: a wrong path that nothing flagged).
+    ///
+    /// * The smallest ratio separated from every other beyond both bounds:
+    ///   its row leaves (the exact order), at the refined step.
+    /// * Else the rows within the bounds of the smallest are a tie for the
+    ///   lexicographic rule when the bound, as a step of `L`, is within
+    ///   [`crate::tolerance::TIE_RESOLUTION_EPS`] roundings of `L` (the
+    ///   precision cannot tell the breakpoints apart);
+    /// * a larger bound leaves the order undecided: counted, and the trace
+    ///   stops `ill_conditioned` naming the rows and the gap (`tie_alarm`).
+    fn read_near_tie(&self, v: Var, col: &Col<T>, tied: &[usize], xnorm: T) -> NearTie<T> {
+        let reads = self.refined_ratios(v, col, tied);
+        let decided = |k: usize| reads[k].err.is_finite();
+        let mut best: Option<usize> = None;
+        for k in 0..reads.len() {
+            if decided(k) && best.is_none_or(|b| reads[k].ratio < reads[b].ratio) {
+                best = Some(k);
+            }
+        }
+        let (resolved, unresolved) = self.near_ties.get();
+        let (keep, tb, eb) = match best {
+            Some(b) => {
+                let (tb, eb) = (reads[b].ratio, reads[b].err);
+                let keep: Vec<usize> = (0..reads.len())
+                    .filter(|&k| {
+                        k == b || !decided(k) || (reads[k].ratio - tb).to_f64() - reads[k].err <= eb
+                    })
+                    .collect();
+                if keep.len() == 1 {
+                    self.near_ties.set((resolved + 1, unresolved));
+                    let theta = T::narrow(tb);
+                    return NearTie::Separated(tied[b], theta.max(T::zero()));
+                }
+                (keep, tb.to_f64(), eb)
+            }
+            None => ((0..reads.len()).collect(), 0.0, f64::INFINITY),
+        };
+        let emax = keep.iter().fold(eb, |a, &k| a.max(reads[k].err));
+        let eps = T::eps().to_f64();
+        let k_eps = crate::tolerance::TIE_RESOLUTION_EPS * eps;
+        let rate = match self.row_of(Var::Lambda) {
+            None => 1.0,
+            Some(l) => col[l].to_f64().abs(),
+        };
+        let first = tied[best.unwrap_or(0)];
+        let colmax = col_max_abs(col).to_f64();
+        let tau = if rate > self.noise.to_f64() * colmax.max(1.0) {
+            let lam = self.lambda.to_f64();
+            k_eps * 1f64.max(lam.abs()).max((lam + tb * rate).abs()) / rate
+        } else {
+            k_eps * (tb.abs() + xnorm.to_f64().max(1.0) / col[first].to_f64().abs())
+        };
+        let rows: Vec<usize> = keep.iter().map(|&k| tied[k]).collect();
+        if emax <= tau {
+            return NearTie::Tied(rows);
+        }
+        self.near_ties.set((resolved, unresolved + 1));
+        let mut alarm = self.tie_alarm.borrow_mut();
+        if alarm.is_none() {
+            let names: Vec<String> = keep
+                .iter()
+                .map(|&k| {
+                    format!(
+                        "{} (step {:e} +- {:.1e})",
+                        self.basis[tied[k]],
+                        reads[k].ratio.to_f64(),
+                        reads[k].err
+                    )
+                })
+                .collect();
+            let gap = keep
+                .iter()
+                .fold(0.0f64, |a, &k| a.max((reads[k].ratio.to_f64() - tb).abs()));
+            *alarm = Some(format!(
+                "near tie at L = {:e}: {} reach zero within the error bounds of their refined ratios (gap {gap:.2e}, bound {emax:.2e}, above {} roundings of L) in {} (basis condition estimate {:.1e}): which leaves first is not decided in this precision; the path is not continued; use a higher precision or exact arithmetic",
+                self.lambda.to_f64(),
+                names.join(", "),
+                crate::tolerance::TIE_RESOLUTION_EPS,
+                T::NAME,
+                self.cond
+            ));
+        }
+        NearTie::Tied(rows)
     }
 
     /// Pivot `entering` (column `col = B^{-1} a`, value `value`) into row `r`.
