@@ -206,9 +206,27 @@ pub const TIE_ERROR_GAMMA: f64 = 8.0;
 /// breakpoints the working precision cannot tell apart. A larger bound
 /// leaves the order undecided and the trace stops `ill_conditioned` (a
 /// higher precision or exact arithmetic decides).
-pub const TIE_RESOLUTION_EPS: f64 = 1e3;
+///
+/// The bound is a conservative first-order one, and fx128 has no wider type
+/// to refine in (its residual is accumulated in fx128): exact ties of the
+/// paper's cantilever traced with Lemke in fx128 have bounds of 1.3 to 2.2
+/// thousand roundings of `L` (measured; 1e3 stopped that trace), while the
+/// undecided tie of the Fibonacci block of `docs/limits.md` has a bound
+/// 4.5e12 times 1e3 roundings. 1e5 keeps a factor of 45 over the first and
+/// 4.5e10 under the second.
+pub const TIE_RESOLUTION_EPS: f64 = 1e5;
 
 /// A near tie is not read again once the basis condition estimate times
 /// `eps` exceeds this (one refinement step no longer converges): it is
 /// undecided.
 pub const TIE_REFINE_MAX_COND_EPS: f64 = 0.1;
+
+/// Refined ratios of a near tie (above) that differ by at most this many
+/// `eps` of the ratio's scale (`|ratio| + max(1, max |x|) / |col_r|`) stay a
+/// tie for the lexicographic rule even where their bounds separate them:
+/// such a gap is the rounding of the data themselves (the symmetric hinges
+/// of a frame assembled in three dimensions differ by an ulp or two, and
+/// ordering them by those ulps lost hinge events, `frames/tests/space.rs`).
+/// Two breakpoints this close are one event in the working precision; the
+/// exact certificate (`solve_certified`) tells them apart.
+pub const TIE_SEPARATION_EPS: f64 = 16.0;

@@ -361,7 +361,7 @@ impl<'a, T: Scalar> Engine<'a, T> {
         self.since_refactor = 0;
         self.deferred = 0;
         self.max_cond = self.max_cond.max(cond);
-        self.cond = cond;
+        self.cond = cond.max(1.0); // (an empty block reports 0: B = I)
         self.refine_columns = cond * T::eps().to_f64() > self.settings.refine_cond_eps;
         // on a sparse M the wide residual is a pass over the stored entries
         // (cheap): from the same threshold as the columns; on a dense M it

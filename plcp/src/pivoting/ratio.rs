@@ -200,19 +200,49 @@ impl<'a, T: Scalar> Engine<'a, T> {
         let (keep, tb, eb) = match best {
             Some(b) => {
                 let (tb, eb) = (reads[b].ratio, reads[b].err);
+                // a gap within TIE_SEPARATION_EPS roundings of the ratio's
+                // scale is the data's own rounding (an assembled frame's
+                // symmetric hinges differ by an ulp or two): still a tie
+                let sep = crate::tolerance::TIE_SEPARATION_EPS * T::eps().to_f64();
                 let keep: Vec<usize> = (0..reads.len())
                     .filter(|&k| {
-                        k == b || !decided(k) || (reads[k].ratio - tb).to_f64() - reads[k].err <= eb
+                        let gap = (reads[k].ratio - tb).to_f64();
+                        let scale = tb.to_f64().abs() + (xnorm / col[tied[k]]).to_f64();
+                        k == b || !decided(k) || gap - reads[k].err <= eb || gap <= sep * scale
                     })
                     .collect();
+                if keep.len() == 1 && std::env::var("PLCP_TIE_DEBUG").is_ok() {
+                    let rs: Vec<String> = (0..reads.len())
+                        .map(|k| {
+                            format!(
+                                "{}:{:e}+-{:.2e}",
+                                self.basis[tied[k]],
+                                reads[k].ratio.to_f64(),
+                                reads[k].err
+                            )
+                        })
+                        .collect();
+                    eprintln!(
+                        "SEP {} L={:e} -> {} {}",
+                        T::NAME,
+                        self.lambda.to_f64(),
+                        self.basis[tied[b]],
+                        rs.join(" ")
+                    );
+                }
                 if keep.len() == 1 {
                     self.near_ties.set((resolved + 1, unresolved));
-                    let theta = T::narrow(tb);
-                    return NearTie::Separated(tied[b], theta.max(T::zero()));
+                    // (the step of the working values: the pivot updates them)
+                    let r = tied[b];
+                    let theta = self.x[r].max(T::zero()) / col[r];
+                    return NearTie::Separated(r, theta);
                 }
                 (keep, tb.to_f64(), eb)
             }
-            None => ((0..reads.len()).collect(), 0.0, f64::INFINITY),
+            // nothing could be read again (the basis is too ill-conditioned
+            // for one refinement step): the tie window's verdict stands, as
+            // before the reading (the condition guards of the trace see it)
+            None => return NearTie::Tied(tied.to_vec()),
         };
         let emax = keep.iter().fold(eb, |a, &k| a.max(reads[k].err));
         let eps = T::eps().to_f64();
@@ -230,6 +260,29 @@ impl<'a, T: Scalar> Engine<'a, T> {
             k_eps * (tb.abs() + xnorm.to_f64().max(1.0) / col[first].to_f64().abs())
         };
         let rows: Vec<usize> = keep.iter().map(|&k| tied[k]).collect();
+        if std::env::var("PLCP_TIE_DEBUG").is_ok() {
+            let rs: Vec<String> = keep
+                .iter()
+                .map(|&k| {
+                    format!(
+                        "{}:{:e}+-{:.2e}",
+                        self.basis[tied[k]],
+                        reads[k].ratio.to_f64(),
+                        reads[k].err
+                    )
+                })
+                .collect();
+            eprintln!(
+                "TIE {} L={:e} cond={:.2e} tau={:.2e} emax={:.2e} rate={:.2e} {}",
+                T::NAME,
+                self.lambda.to_f64(),
+                self.cond,
+                tau,
+                emax,
+                rate,
+                rs.join(" ")
+            );
+        }
         if emax <= tau {
             return NearTie::Tied(rows);
         }
@@ -251,7 +304,7 @@ impl<'a, T: Scalar> Engine<'a, T> {
                 .iter()
                 .fold(0.0f64, |a, &k| a.max((reads[k].ratio.to_f64() - tb).abs()));
             *alarm = Some(format!(
-                "near tie at L = {:e}: {} reach zero within the error bounds of their refined ratios (gap {gap:.2e}, bound {emax:.2e}, above {} roundings of L) in {} (basis condition estimate {:.1e}): which leaves first is not decided in this precision; the path is not continued; use a higher precision or exact arithmetic",
+                "near tie at L = {:e}: {} reach zero within the error bounds of their refined ratios (gap {gap:.2e}, bound {emax:.2e}, above {} roundings of L) in {} (condition estimate at the last refactorisation {:.1e}): which leaves first is not decided in this precision; the path is not continued; use a higher precision or exact arithmetic",
                 self.lambda.to_f64(),
                 names.join(", "),
                 crate::tolerance::TIE_RESOLUTION_EPS,
