@@ -155,6 +155,7 @@ fn settings_fx128<T: Scalar>(s: &Settings<T>, warm: Option<Vec<Var>>) -> Setting
         max_pivots: s.max_pivots,
         pivot_tol_eps: s.pivot_tol_eps,
         tie_tol_eps: s.tie_tol_eps,
+        near_ties: s.near_ties,
         refactor_period: s.refactor_period,
         max_cond_eps: s.max_cond_eps,
         refine_tol_eps: s.refine_tol_eps,

@@ -406,11 +406,13 @@ pub struct Info {
     /// a [`crate::observe::CompactPath`] when one was kept): the memory model
     /// is in [`crate::observe`].
     pub path_bytes: usize,
-    /// Near ties of the minimum-ratio test (rows within the tie tolerance
-    /// whose ratios differ) that values refined with wide residuals put in
-    /// their exact order (issue 14, `docs/limits.md`).
+    /// Near events of the minimum-ratio test read again with values and
+    /// column entries refined with wide residuals ([`crate::NearTies::Refine`];
+    /// issue 14, `docs/limits.md`) and put in their exact order: rows within
+    /// the tie tolerance whose ratios differ, and rows whose column entry is
+    /// below the pivot tolerance but, refined, blocks first.
     pub near_ties_resolved: usize,
-    /// Near ties the refined values could not order within their error
+    /// Near events the refined values could not order within their error
     /// bounds (the trace stopped `ill_conditioned` at the first).
     pub near_ties_unresolved: usize,
 }

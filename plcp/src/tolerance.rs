@@ -221,12 +221,9 @@ pub const TIE_RESOLUTION_EPS: f64 = 1e5;
 /// undecided.
 pub const TIE_REFINE_MAX_COND_EPS: f64 = 0.1;
 
-/// Refined ratios of a near tie (above) that differ by at most this many
-/// `eps` of the ratio's scale (`|ratio| + max(1, max |x|) / |col_r|`) stay a
-/// tie for the lexicographic rule even where their bounds separate them:
-/// such a gap is the rounding of the data themselves (the symmetric hinges
-/// of a frame assembled in three dimensions differ by an ulp or two, and
-/// ordering them by those ulps lost hinge events, `frames/tests/space.rs`).
-/// Two breakpoints this close are one event in the working precision; the
-/// exact certificate (`solve_certified`) tells them apart.
-pub const TIE_SEPARATION_EPS: f64 = 16.0;
+/// At most this many rows whose entering-column entry is below the pivot
+/// tolerance, yet whose ratio would block first, are read again with a
+/// refined column at one ratio test (the smallest ratios;
+/// `pivoting/ratio.rs`, `read_small_entries`): an entry the refinement
+/// separates from zero beyond its error bound blocks.
+pub const SMALL_ENTRY_READS: usize = 4;

@@ -198,7 +198,6 @@ proptest! {
     // `w_2 = delta (s - L)`-like entry of size `delta` is below the pivot
     // tolerance's noise level and is lost (not a tie; docs/limits.md)
     #[test]
-    #[ignore = "remaining defect: a block entry of 2^-44 below the pivot noise is lost in f64 (docs/limits.md)"]
     fn f64_near_tie_inside_the_path(case in inside_path()) {
         reached_is_certified::<f64>(&case)?;
     }

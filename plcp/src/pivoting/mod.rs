@@ -189,6 +189,8 @@ pub(crate) struct Engine<'a, T: Scalar> {
     /// An undecided near tie of the last ratio test: why the trace stops
     /// `ill_conditioned` (taken by the trace).
     tie_alarm: RefCell<Option<String>>,
+    /// Refactorise after the next pivot (one on an entry below the noise).
+    refactor_after: Cell<bool>,
 }
 
 /// The two accumulators of [`Engine::wide_residual_pair`] (values, column).
@@ -315,6 +317,7 @@ impl<'a, T: Scalar> Engine<'a, T> {
             cond: 1.0,
             near_ties: Cell::new((0, 0)),
             tie_alarm: RefCell::new(None),
+            refactor_after: Cell::new(false),
         };
         for (r, v) in basis.iter().enumerate() {
             let k = e.var_index(*v);

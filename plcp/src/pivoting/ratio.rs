@@ -29,15 +29,34 @@ impl<'a, T: Scalar> Engine<'a, T> {
     /// read again with refined values ([`Self::read_near_tie`]).
     pub(super) fn ratio_test(&self, col: &Col<T>, v: Var) -> Option<(usize, T)> {
         let small = T::eps().sqrt() * col_max_abs(col);
+        // (set again below when a small entry blocks; a test whose block
+        // was not pivoted on, L_max first, leaves nothing behind)
+        self.refactor_after.set(false);
         let mut excluded: Vec<usize> = Vec::new();
         loop {
             let (r, theta) = self.ratio_test_excluding(col, v, &excluded)?;
             let entry = col[r].abs();
+            // (a small entry that the refined column separates from zero:
+            // read_small_entries, which marks its pivot for a refactorisation)
             if entry > small
+                || self.refactor_after.get()
                 || matches!(self.basis[r], Var::Artificial(_))
                 || entry > self.pivot_tol * self.entry_rounding(r, col)
             {
                 return Some((r, theta));
+            }
+            // within its own rounding: read again with the refined column
+            // where the data are exact as given (issue 14: after an exact
+            // tie, the slack `w = delta (2 - L)` of a near-singular block
+            // stays basic at zero with a rate of `delta`, and ran negative)
+            if self.settings.near_ties == crate::settings::NearTies::Refine {
+                let read = &self.refined_ratios(v, col, &[r])[0];
+                if read.err.is_finite() {
+                    let (resolved, unresolved) = self.near_ties.get();
+                    self.near_ties.set((resolved + 1, unresolved));
+                    self.refactor_after.set(true);
+                    return Some((r, theta));
+                }
             }
             excluded.push(r);
         }
@@ -131,6 +150,13 @@ impl<'a, T: Scalar> Engine<'a, T> {
                 best = Some(best.map_or(ratio, |b| b.min(ratio)));
             }
         }
+        // a row whose entry is below the tolerance may still block first
+        // (issue 14): read again where the data are exact as given
+        if self.settings.near_ties == crate::settings::NearTies::Refine {
+            if let Some(block) = self.read_small_entries(col, v, ptol, best, excluded) {
+                return Some(block);
+            }
+        }
         let tmin = best?;
         let is_tied = |r: usize| {
             ratio(r).is_some_and(|t| t - tmin <= self.tie_tol * (tmin.abs() + xnorm / col[r]))
@@ -151,9 +177,11 @@ impl<'a, T: Scalar> Engine<'a, T> {
         // the tie window is wide (it absorbs the rounding of values that may
         // have lost digits): the rows are read again with refined values,
         // and those the refinement separates leave in their exact order
-        match self.read_near_tie(v, col, &tied, xnorm) {
-            NearTie::Separated(r, theta) => return Some((r, theta)),
-            NearTie::Tied(rows) => tied = rows,
+        if self.settings.near_ties == crate::settings::NearTies::Refine {
+            match self.read_near_tie(v, col, &tied, xnorm) {
+                NearTie::Separated(r, theta) => return Some((r, theta)),
+                NearTie::Tied(rows) => tied = rows,
+            }
         }
         if tied.len() > 1 {
             // lexicographic rule (crate::basis::lex)
@@ -200,36 +228,11 @@ impl<'a, T: Scalar> Engine<'a, T> {
         let (keep, tb, eb) = match best {
             Some(b) => {
                 let (tb, eb) = (reads[b].ratio, reads[b].err);
-                // a gap within TIE_SEPARATION_EPS roundings of the ratio's
-                // scale is the data's own rounding (an assembled frame's
-                // symmetric hinges differ by an ulp or two): still a tie
-                let sep = crate::tolerance::TIE_SEPARATION_EPS * T::eps().to_f64();
                 let keep: Vec<usize> = (0..reads.len())
                     .filter(|&k| {
-                        let gap = (reads[k].ratio - tb).to_f64();
-                        let scale = tb.to_f64().abs() + (xnorm / col[tied[k]]).to_f64();
-                        k == b || !decided(k) || gap - reads[k].err <= eb || gap <= sep * scale
+                        k == b || !decided(k) || (reads[k].ratio - tb).to_f64() - reads[k].err <= eb
                     })
                     .collect();
-                if keep.len() == 1 && std::env::var("PLCP_TIE_DEBUG").is_ok() {
-                    let rs: Vec<String> = (0..reads.len())
-                        .map(|k| {
-                            format!(
-                                "{}:{:e}+-{:.2e}",
-                                self.basis[tied[k]],
-                                reads[k].ratio.to_f64(),
-                                reads[k].err
-                            )
-                        })
-                        .collect();
-                    eprintln!(
-                        "SEP {} L={:e} -> {} {}",
-                        T::NAME,
-                        self.lambda.to_f64(),
-                        self.basis[tied[b]],
-                        rs.join(" ")
-                    );
-                }
                 if keep.len() == 1 {
                     self.near_ties.set((resolved + 1, unresolved));
                     // (the step of the working values: the pivot updates them)
@@ -260,29 +263,6 @@ impl<'a, T: Scalar> Engine<'a, T> {
             k_eps * (tb.abs() + xnorm.to_f64().max(1.0) / col[first].to_f64().abs())
         };
         let rows: Vec<usize> = keep.iter().map(|&k| tied[k]).collect();
-        if std::env::var("PLCP_TIE_DEBUG").is_ok() {
-            let rs: Vec<String> = keep
-                .iter()
-                .map(|&k| {
-                    format!(
-                        "{}:{:e}+-{:.2e}",
-                        self.basis[tied[k]],
-                        reads[k].ratio.to_f64(),
-                        reads[k].err
-                    )
-                })
-                .collect();
-            eprintln!(
-                "TIE {} L={:e} cond={:.2e} tau={:.2e} emax={:.2e} rate={:.2e} {}",
-                T::NAME,
-                self.lambda.to_f64(),
-                self.cond,
-                tau,
-                emax,
-                rate,
-                rs.join(" ")
-            );
-        }
         if emax <= tau {
             return NearTie::Tied(rows);
         }
@@ -313,6 +293,90 @@ impl<'a, T: Scalar> Engine<'a, T> {
             ));
         }
         NearTie::Tied(rows)
+    }
+
+    /// Rows whose entry of the entering column is positive but at or below
+    /// the pivot tolerance `ptol` (no candidates of the ratio test) and whose
+    /// ratio would block before `tmin`, read again with the refined column
+    /// ([`Self::refined_ratios`]; issue 14: in the block
+    /// `[[1, 1], [1, 1 + 2^-46]]` with `z_1` basic, the slack
+    /// `w_2 = 2^-46 (s + 1 - L)` falls at the rate `2^-46`, below the noise
+    /// of a column of one, and f64 ran past its zero: `reached` on a wrong
+    /// path). An entry the refinement separates from zero beyond its error
+    /// bound, whose ratio stays below `tmin` beyond both bounds, is the
+    /// block; the basis is then refactorised after the pivot (its update on
+    /// an entry that small is not trusted), which also estimates its
+    /// condition afresh. An entry within its bound is rounding, as before.
+    /// At most [`crate::tolerance::SMALL_ENTRY_READS`] rows (the smallest
+    /// ratios) are read; nothing is read, and nothing allocated, where no
+    /// row qualifies.
+    fn read_small_entries(
+        &self,
+        col: &Col<T>,
+        v: Var,
+        ptol: T,
+        tmin: Option<T>,
+        excluded: &[usize],
+    ) -> Option<(usize, T)> {
+        let qualifies = |r: usize| {
+            let c = col[r];
+            let small = is_comp(self.basis[r]) && c > T::zero() && c <= ptol;
+            (small && !excluded.contains(&r))
+                .then(|| self.x[r].max(T::zero()) / c)
+                .filter(|&t| tmin.is_none_or(|m| t < m))
+        };
+        if !(0..self.dim).any(|r| qualifies(r).is_some()) {
+            return None;
+        }
+        let mut rows: Vec<(T, usize)> = (0..self.dim)
+            .filter_map(|r| qualifies(r).map(|t| (t, r)))
+            .collect();
+        rows.sort_by(|a, b| a.0.partial_cmp(&b.0).unwrap_or(core::cmp::Ordering::Equal));
+        rows.truncate(crate::tolerance::SMALL_ENTRY_READS);
+        let rows: Vec<usize> = rows.into_iter().map(|(_, r)| r).collect();
+        let reads = self.refined_ratios(v, col, &rows);
+        let mut best: Option<(usize, T::Wide, f64)> = None;
+        for (k, read) in reads.iter().enumerate() {
+            // (an infinite bound: the entry is not separated from zero)
+            if !read.err.is_finite() {
+                continue;
+            }
+            let t = read.ratio.to_f64();
+            if tmin.is_some_and(|m| t + read.err >= m.to_f64()) {
+                continue;
+            }
+            if best.is_none_or(|(_, b, _)| read.ratio < b) {
+                best = Some((rows[k], read.ratio, read.err));
+            }
+        }
+        let (resolved, unresolved) = self.near_ties.get();
+        let (r, ratio, err) = best?;
+        // two small entries within each other's bounds: which leaves first
+        // is not decided in this precision (counted; the trace stops)
+        let rival = reads.iter().enumerate().find(|(k, read)| {
+            rows[*k] != r && read.err.is_finite() && (read.ratio - ratio).to_f64() - read.err <= err
+        });
+        if let Some((k, read)) = rival {
+            self.near_ties.set((resolved, unresolved + 1));
+            let mut alarm = self.tie_alarm.borrow_mut();
+            if alarm.is_none() {
+                *alarm = Some(format!(
+                    "near tie at L = {:e}: {} (step {:e} +- {:.1e}) and {} (step {:e} +- {:.1e}) block within the error bounds of their refined ratios, on column entries below the pivot tolerance, in {}: which leaves first is not decided in this precision; the path is not continued; use a higher precision or exact arithmetic",
+                    self.lambda.to_f64(),
+                    self.basis[r],
+                    ratio.to_f64(),
+                    err,
+                    self.basis[rows[k]],
+                    read.ratio.to_f64(),
+                    read.err,
+                    T::NAME
+                ));
+            }
+            return None;
+        }
+        self.near_ties.set((resolved + 1, unresolved));
+        self.refactor_after.set(true);
+        Some((r, T::narrow(ratio).max(T::zero())))
     }
 
     /// Pivot `entering` (column `col = B^{-1} a`, value `value`) into row `r`.
@@ -357,6 +421,10 @@ impl<'a, T: Scalar> Engine<'a, T> {
             self.refactor()?;
         }
         self.x[r] = value;
+        if self.refactor_after.take() {
+            // (a pivot on an entry below the noise: read_small_entries)
+            self.refactor()?;
+        }
         self.pivots += 1;
         self.since_refactor += 1;
         if self
