@@ -27,14 +27,18 @@ impl<'a, T: Scalar> Engine<'a, T> {
     ///
     /// `v` is the entering variable (`col = B^{-1} a_v`): rows that tie are
     /// read again with refined values ([`Self::read_near_tie`]).
-    pub(super) fn ratio_test(&self, col: &Col<T>, v: Var) -> Option<(usize, T)> {
+    ///
+    /// `cap` is the step at which the trace ends (`L_max`, when `L` rises):
+    /// where no regular row blocks, entries below the pivot tolerance are
+    /// read for a block before it ([`Self::read_small_entries`]).
+    pub(super) fn ratio_test(&self, col: &Col<T>, v: Var, cap: Option<T>) -> Option<(usize, T)> {
         let small = T::eps().sqrt() * col_max_abs(col);
         // (set again below when a small entry blocks; a test whose block
         // was not pivoted on, L_max first, leaves nothing behind)
         self.refactor_after.set(false);
         let mut excluded: Vec<usize> = Vec::new();
         loop {
-            let (r, theta) = self.ratio_test_excluding(col, v, &excluded)?;
+            let (r, theta) = self.ratio_test_excluding(col, v, cap, &excluded)?;
             let entry = col[r].abs();
             // (a small entry that the refined column separates from zero:
             // read_small_entries, which marks its pivot for a refactorisation)
@@ -92,7 +96,13 @@ impl<'a, T: Scalar> Engine<'a, T> {
     }
 
     /// [`Self::ratio_test`] with the rows `excluded` no candidates.
-    fn ratio_test_excluding(&self, col: &Col<T>, v: Var, excluded: &[usize]) -> Option<(usize, T)> {
+    fn ratio_test_excluding(
+        &self,
+        col: &Col<T>,
+        v: Var,
+        cap: Option<T>,
+        excluded: &[usize],
+    ) -> Option<(usize, T)> {
         let colmax = col_max_abs(col);
         if colmax == T::zero() {
             return None;
@@ -151,15 +161,18 @@ impl<'a, T: Scalar> Engine<'a, T> {
             }
         }
         // a row whose entry is below the tolerance may still block first
-        // (issue 14): read again where the data are exact as given
-        // (only before a block of the test: where none blocks, an entry
-        // below the tolerance would turn a ray into a block far along it,
-        // from refined entries near the wide type's own resolution: a
+        // (issue 14): read again where the data are exact as given, before
+        // the first regular block or, where none blocks, before the end of
+        // the trace (`cap`, L_max). Never on a ray with no end: an entry
+        // below the tolerance would turn the ray into a block far along
+        // it, from refined entries near the wide type's own resolution (a
         // random system (9) read one at L = 2.9e31, 1.6e-30 against a bound
         // of 7.5e-31, where the same basis's ray is certified exactly)
-        if self.settings.near_ties == crate::settings::NearTies::Refine && best.is_some() {
-            if let Some(block) = self.read_small_entries(col, v, ptol, best, excluded) {
-                return Some(block);
+        if self.settings.near_ties == crate::settings::NearTies::Refine {
+            if let Some(bound) = best.or(cap) {
+                if let Some(block) = self.read_small_entries(col, v, ptol, bound, excluded) {
+                    return Some(block);
+                }
             }
         }
         let tmin = best?;
@@ -304,13 +317,14 @@ impl<'a, T: Scalar> Engine<'a, T> {
 
     /// Rows whose entry of the entering column is positive but at or below
     /// the pivot tolerance `ptol` (no candidates of the ratio test) and whose
-    /// ratio would block before `tmin`, read again with the refined column
+    /// ratio would block before `bound` (the first regular block, or the
+    /// end of the trace), read again with the refined column
     /// ([`Self::refined_ratios`]; issue 14: in the block
     /// `[[1, 1], [1, 1 + 2^-46]]` with `z_1` basic, the slack
     /// `w_2 = 2^-46 (s + 1 - L)` falls at the rate `2^-46`, below the noise
     /// of a column of one, and f64 ran past its zero: `reached` on a wrong
     /// path). An entry the refinement separates from zero beyond its error
-    /// bound, whose ratio stays below `tmin` beyond both bounds, is the
+    /// bound, whose ratio stays below `bound` beyond its error bound, is the
     /// block; the basis is then refactorised after the pivot (its update on
     /// an entry that small is not trusted), which also estimates its
     /// condition afresh. An entry within its bound is rounding, as before.
@@ -322,18 +336,16 @@ impl<'a, T: Scalar> Engine<'a, T> {
         col: &Col<T>,
         v: Var,
         ptol: T,
-        tmin: Option<T>,
+        bound: T,
         excluded: &[usize],
     ) -> Option<(usize, T)> {
-        let tmin = Some(tmin?);
-        let m = tmin.expect("a block of the test");
-        // a row can block before `tmin` with an entry at most `ptol` only if
-        // its value is below `tmin * ptol`; its working entry may be any
+        // a row can block before `bound` with an entry at most `ptol` only if
+        // its value is below `bound * ptol`; its working entry may be any
         // rounding of a small one, zero or negative included (after a
         // refactorisation the block's `2^-46` came out as an exact zero)
         // (and the working value itself may be a rounding of a small one:
         // the pivot noise of the values' scale on top)
-        let reach = m * ptol + self.noise * self.xscale();
+        let reach = bound * ptol + self.noise * self.xscale();
         let qualifies = |r: usize| {
             let c = col[r];
             (is_comp(self.basis[r])
@@ -359,7 +371,7 @@ impl<'a, T: Scalar> Engine<'a, T> {
                 continue;
             }
             let t = read.ratio.to_f64();
-            if tmin.is_some_and(|m| t + read.err >= m.to_f64()) {
+            if t + read.err >= bound.to_f64() {
                 continue;
             }
             if best.is_none_or(|(_, b, _)| read.ratio < b) {
