@@ -268,20 +268,8 @@ impl<'a, T: Scalar> Engine<'a, T> {
             None => return NearTie::Tied(tied.to_vec()),
         };
         let emax = keep.iter().fold(eb, |a, &k| a.max(reads[k].err));
-        let eps = T::eps().to_f64();
-        let k_eps = crate::tolerance::TIE_RESOLUTION_EPS * eps;
-        let rate = match self.row_of(Var::Lambda) {
-            None => 1.0,
-            Some(l) => col[l].to_f64().abs(),
-        };
         let first = tied[best.unwrap_or(0)];
-        let colmax = col_max_abs(col).to_f64();
-        let tau = if rate > self.noise.to_f64() * colmax.max(1.0) {
-            let lam = self.lambda.to_f64();
-            k_eps * 1f64.max(lam.abs()).max((lam + tb * rate).abs()) / rate
-        } else {
-            k_eps * (tb.abs() + xnorm.to_f64().max(1.0) / col[first].to_f64().abs())
-        };
+        let tau = self.tie_resolution(col, tb, first, xnorm);
         let rows: Vec<usize> = keep.iter().map(|&k| tied[k]).collect();
         if emax <= tau {
             return NearTie::Tied(rows);
@@ -313,6 +301,26 @@ impl<'a, T: Scalar> Engine<'a, T> {
             ));
         }
         NearTie::Tied(rows)
+    }
+
+    /// The error bound (as a step of the entering variable) under which two
+    /// refined ratios near `tb` are one event for the working precision:
+    /// [`crate::tolerance::TIE_RESOLUTION_EPS`] roundings of `L` over the
+    /// rate of `L`, or, where `L` does not move, of the step and
+    /// `max(1, |x|) / |col_first|`.
+    fn tie_resolution(&self, col: &Col<T>, tb: f64, first: usize, xnorm: T) -> f64 {
+        let k_eps = crate::tolerance::TIE_RESOLUTION_EPS * T::eps().to_f64();
+        let rate = match self.row_of(Var::Lambda) {
+            None => 1.0,
+            Some(l) => col[l].to_f64().abs(),
+        };
+        let colmax = col_max_abs(col).to_f64();
+        if rate > self.noise.to_f64() * colmax.max(1.0) {
+            let lam = self.lambda.to_f64();
+            k_eps * 1f64.max(lam.abs()).max((lam + tb * rate).abs()) / rate
+        } else {
+            k_eps * (tb.abs() + xnorm.to_f64().max(1.0) / col[first].to_f64().abs())
+        }
     }
 
     /// Rows whose entry of the entering column is positive but at or below
@@ -370,6 +378,10 @@ impl<'a, T: Scalar> Engine<'a, T> {
             if !read.err.is_finite() {
                 continue;
             }
+            // (a refined step of zero is a block too: after the exact tie
+            // of near_ties.rs at L = 2.5 the slack w = 2^-43 (2.5 - L)
+            // stays basic at -2.5e-29 on an entry of 4.5e-13, step 0 +-
+            // 1.4e-16, and runs negative if it is not taken)
             let t = read.ratio.to_f64();
             if t + read.err >= bound.to_f64() {
                 continue;
@@ -380,28 +392,47 @@ impl<'a, T: Scalar> Engine<'a, T> {
         }
         let (resolved, unresolved) = self.near_ties.get();
         let (r, ratio, err) = best?;
-        // two small entries within each other's bounds: which leaves first
-        // is not decided in this precision (counted; the trace stops)
-        let rival = reads.iter().enumerate().find(|(k, read)| {
-            rows[*k] != r && read.err.is_finite() && (read.ratio - ratio).to_f64() - read.err <= err
-        });
-        if let Some((k, read)) = rival {
-            self.near_ties.set((resolved, unresolved + 1));
-            let mut alarm = self.tie_alarm.borrow_mut();
-            if alarm.is_none() {
-                *alarm = Some(format!(
-                    "near tie at L = {:e}: {} (step {:e} +- {:.1e}) and {} (step {:e} +- {:.1e}) block within the error bounds of their refined ratios, on column entries below the pivot tolerance, in {}: which leaves first is not decided in this precision; the path is not continued; use a higher precision or exact arithmetic",
-                    self.lambda.to_f64(),
-                    self.basis[r],
-                    ratio.to_f64(),
-                    err,
-                    self.basis[rows[k]],
-                    read.ratio.to_f64(),
-                    read.err,
-                    T::NAME
-                ));
+        // small entries within each other's bounds: one event where the
+        // bounds are within the precision's resolution of L (the row with
+        // the largest working entry pivots), else which leaves first is not
+        // decided in this precision (counted; the trace stops)
+        let rivals: Vec<usize> = (0..reads.len())
+            .filter(|&k| {
+                let read = &reads[k];
+                rows[k] != r
+                    && read.err.is_finite()
+                    && (read.ratio - ratio).to_f64() - read.err <= err
+            })
+            .collect();
+        let mut r = r;
+        if let Some(&k) = rivals.first() {
+            let emax = rivals.iter().fold(err, |a, &k| a.max(reads[k].err));
+            let tau = self.tie_resolution(col, ratio.to_f64(), r, self.xscale());
+            if emax <= tau {
+                for &k in &rivals {
+                    if col[rows[k]] > col[r] {
+                        r = rows[k];
+                    }
+                }
+            } else {
+                let read = &reads[k];
+                self.near_ties.set((resolved, unresolved + 1));
+                let mut alarm = self.tie_alarm.borrow_mut();
+                if alarm.is_none() {
+                    *alarm = Some(format!(
+                        "near tie at L = {:e}: {} (step {:e} +- {:.1e}) and {} (step {:e} +- {:.1e}) block within the error bounds of their refined ratios, on column entries below the pivot tolerance, in {}: which leaves first is not decided in this precision; the path is not continued; use a higher precision or exact arithmetic",
+                        self.lambda.to_f64(),
+                        self.basis[r],
+                        ratio.to_f64(),
+                        err,
+                        self.basis[rows[k]],
+                        read.ratio.to_f64(),
+                        read.err,
+                        T::NAME
+                    ));
+                }
+                return None;
             }
-            return None;
         }
         self.near_ties.set((resolved + 1, unresolved));
         self.refactor_after.set(true);
