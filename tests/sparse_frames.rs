@@ -7,7 +7,7 @@
 mod common;
 
 use frames::{Scene, System};
-use plcp::{BasisKind, Method, Path, Settings};
+use plcp::{BasisKind, Method, Path};
 
 fn scenes() -> Vec<Scene> {
     let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes");
@@ -33,7 +33,11 @@ fn scenes() -> Vec<Scene> {
 /// grid beyond the last. (Pivot-for-pivot agreement is tested on
 /// nondegenerate random problems in `plcp/tests/sparse.rs`.)
 fn same_accelerations(what: &str, system: &System, a: &Path<f64>, b: &Path<f64>) {
-    assert_eq!(a.status, b.status, "{what}: status");
+    assert_eq!(
+        a.status, b.status,
+        "{what}: status ({} / {})",
+        a.message, b.message
+    );
     let nb = system.coordinates.len();
     let mut ls: Vec<f64> = a
         .breakpoints
@@ -66,7 +70,12 @@ fn sparse_route_matches_dense_on_frames() {
         let dense = system.plcp::<f64>(None).unwrap();
         let sparse = system.plcp_sparse::<f64>(None).unwrap();
         assert_eq!(dense.m(), sparse.m(), "{}", scene.file);
-        let mut s = Settings::<f64>::with_method(Method::Wolfe);
+        // frames' settings (near ties within the window are one event:
+        // with plcp's default, reading them again, the sparse basis of
+        // two-storey-sway pivots on an entry below the tolerance at a
+        // degenerate step and stops ill_conditioned at L = 1.4, the dense
+        // one reaches its ray; docs/limits.md)
+        let mut s = frames::solve::plcp_settings::<f64>(Method::Wolfe);
         s.basis = BasisKind::Sparse;
         let mut b = plcp::solve(&sparse, &s).unwrap();
         for kind in [BasisKind::Dense, BasisKind::Block] {

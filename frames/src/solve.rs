@@ -240,7 +240,7 @@ pub(crate) fn trace_pieces(
     std::thread::scope(|scope| {
         let (tx, rx) = std::sync::mpsc::sync_channel::<Msg>(1);
         let tracer = scope.spawn(move || -> Result<Solution, FramesError> {
-            let mut settings = Settings::<f64>::with_method(options.method);
+            let mut settings = plcp_settings::<f64>(options.method);
             settings.escalate = escalate;
             let problem = if uses_sparse(system, options) {
                 settings.basis = plcp::BasisKind::Sparse;
@@ -303,6 +303,19 @@ pub(crate) fn trace_pieces(
 /// references pivot for pivot.
 pub const SPARSE_FROM: usize = 100;
 
+/// The settings with which frames traces system (9): `method`, and every
+/// tie within the tie window taken as one event ([`plcp::NearTies::Window`]):
+/// the system is assembled in floating point, so hinges that reach yield
+/// at once in the scene (symmetric sections) reach it a few ulps apart in
+/// the assembled data, and reading those ulps as the order of events would
+/// lose hinges (`tests/space.rs`). `--certify` checks the answer exactly.
+pub fn plcp_settings<T: Scalar>(method: Method) -> Settings<T> {
+    Settings {
+        near_ties: plcp::NearTies::Window,
+        ..Settings::with_method(method)
+    }
+}
+
 /// True if [`solve`] hands `system` to plcp in sparse form (see [`SPARSE_FROM`]).
 pub fn uses_sparse(system: &System, options: &SolveOptions) -> bool {
     let s = system.sizes();
@@ -316,7 +329,7 @@ fn solve_in<T: Scalar + 'static>(
     certify: bool,
     watch: Option<Watch>,
 ) -> Result<Solution, FramesError> {
-    let mut settings = Settings::<T>::with_method(options.method);
+    let mut settings = plcp_settings::<T>(options.method);
     settings.escalate = escalate;
     let problem = if uses_sparse(system, options) {
         settings.basis = plcp::BasisKind::Sparse;
@@ -572,7 +585,7 @@ mod tests {
     }
 
     fn stored<T: Scalar>(system: &System, o: &SolveOptions, escalate: bool) -> Solution {
-        let mut settings = Settings::<T>::with_method(o.method);
+        let mut settings = plcp_settings::<T>(o.method);
         settings.escalate = escalate;
         let problem = if uses_sparse(system, o) {
             settings.basis = plcp::BasisKind::Sparse;
@@ -588,7 +601,7 @@ mod tests {
         o: &SolveOptions,
         escalate: bool,
     ) -> Option<Solution> {
-        let mut settings = Settings::<T>::with_method(o.method);
+        let mut settings = plcp_settings::<T>(o.method);
         settings.escalate = escalate;
         let problem = if uses_sparse(system, o) {
             settings.basis = plcp::BasisKind::Sparse;

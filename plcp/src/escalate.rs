@@ -155,6 +155,7 @@ fn settings_fx128<T: Scalar>(s: &Settings<T>, warm: Option<Vec<Var>>) -> Setting
         max_pivots: s.max_pivots,
         pivot_tol_eps: s.pivot_tol_eps,
         tie_tol_eps: s.tie_tol_eps,
+        near_ties: s.near_ties,
         refactor_period: s.refactor_period,
         max_cond_eps: s.max_cond_eps,
         refine_tol_eps: s.refine_tol_eps,
@@ -459,6 +460,8 @@ fn splice<T: Scalar>(path: &mut Path<T>, k: usize, rest: Path<fx128>, esc: &mut 
     info.degenerate_pivots += rest.info.degenerate_pivots;
     info.refactorisations += rest.info.refactorisations;
     info.refinements += rest.info.refinements;
+    info.near_ties_resolved += rest.info.near_ties_resolved;
+    info.near_ties_unresolved += rest.info.near_ties_unresolved;
     info.turning_points += rest.info.turning_points;
     info.max_condition = info.max_condition.max(rest.info.max_condition);
     if !esc.warm {

@@ -402,6 +402,7 @@ pub fn solve_lcp<T: Scalar>(
             info.start_pivots = eng.pivots;
             info.degenerate_pivots = eng.degenerate_pivots;
             info.refactorisations = eng.refactorisations;
+            (info.near_ties_resolved, info.near_ties_unresolved) = eng.near_ties.get();
             info.max_condition = eng.max_cond;
             match r {
                 Ok(()) => (Status::Reached, String::new(), unscale(eng.point(None))),

@@ -102,7 +102,7 @@ pub use observe::{solve_observed, CompactPath, Control, Keep, Observed, Observer
 pub use path::{Breakpoint, FreeBlockInfo, Info, Path, Point, Ray, Residual, Segment, Status, Var};
 pub use problem::{Lcp, Plcp};
 pub use scalar::{infinity, Precision, Scalar};
-pub use settings::{BasisKind, Method, Settings, DEFAULT_REFACTOR_PERIOD};
+pub use settings::{BasisKind, Method, NearTies, Settings, DEFAULT_REFACTOR_PERIOD};
 pub use solver::{warm_up, Solver, StepEnd};
 
 /// Traces the solution path of `problem` with the method chosen in `settings`.

@@ -406,6 +406,15 @@ pub struct Info {
     /// a [`crate::observe::CompactPath`] when one was kept): the memory model
     /// is in [`crate::observe`].
     pub path_bytes: usize,
+    /// Near events of the minimum-ratio test read again with values and
+    /// column entries refined with wide residuals ([`crate::NearTies::Refine`];
+    /// issue 14, `docs/limits.md`) and put in their exact order: rows within
+    /// the tie tolerance whose ratios differ, and rows whose column entry is
+    /// below the pivot tolerance but, refined, blocks first.
+    pub near_ties_resolved: usize,
+    /// Near events the refined values could not order within their error
+    /// bounds (the trace stopped `ill_conditioned` at the first).
+    pub near_ties_unresolved: usize,
 }
 
 /// A secondary or unbounded ray: the last point plus `t` times a direction, `t >= 0`.

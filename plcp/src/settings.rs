@@ -34,6 +34,51 @@ impl core::str::FromStr for Method {
     }
 }
 
+/// How ties of the minimum-ratio test within the tie window
+/// ([`Settings::tie_tol_eps`]) are read (issue 14).
+///
+/// The window is wide: it absorbs the rounding of basic values that may have
+/// lost digits. Two breakpoints inside it may still be distinct events of the
+/// data, and taking them as one can be a wrong path that nothing else flags
+/// (the block `[[1, 1], [1, 1 + 2^-46]]` of `docs/limits.md`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum NearTies {
+    /// The data are exact as given (default). Tied rows are read again with
+    /// values and column entries refined by one step whose residual is
+    /// accumulated in the wide type, each ratio with an error bound
+    /// (`pivoting/ratio.rs`). Rows the bounds separate leave in their exact
+    /// order; rows within the bounds of the smallest are a tie for the
+    /// lexicographic rule when the bound is within
+    /// [`crate::tolerance::TIE_RESOLUTION_EPS`] roundings of `L`; a wider bound
+    /// stops the trace `ill_conditioned` naming the rows (a higher precision or
+    /// exact arithmetic decides). [`crate::Info::near_ties_resolved`] and
+    /// `near_ties_unresolved` count them.
+    #[default]
+    Refine,
+    /// Every tie within the window is one event for the lexicographic rule.
+    /// For data that carry their own rounding, where breakpoints closer than
+    /// the window are simultaneous events of the exact problem the data round:
+    /// `frames` assembles system (9) in floating point, and the symmetric
+    /// hinges of a scene, which reach yield at once, reach it 1..3 ulps apart
+    /// in the assembled data (ordering them by those ulps loses hinge events,
+    /// `frames/tests/space.rs`). A near tie of the exact data is then not told
+    /// apart: [`crate::solve_certified`] checks the answer exactly.
+    Window,
+}
+
+impl core::str::FromStr for NearTies {
+    type Err = String;
+    fn from_str(s: &str) -> Result<Self, String> {
+        match s {
+            "refine" => Ok(Self::Refine),
+            "window" => Ok(Self::Window),
+            other => Err(format!(
+                "unknown near-tie rule '{other}': expected refine or window"
+            )),
+        }
+    }
+}
+
 /// Settings. Every tolerance is relative; see [`crate::tolerance`] for how each
 /// is scaled.
 ///
@@ -72,6 +117,8 @@ pub struct Settings<T: Scalar> {
     /// Ratios within `tie_tol_eps * eps` (relative) count as ties and go to the
     /// lexicographic rule. Default `1e3`.
     pub tie_tol_eps: f64,
+    /// How ties within that window are read. Default [`NearTies::Refine`].
+    pub near_ties: NearTies,
     /// Refactorise the basis every this many pivots (a refactorisation also
     /// recomputes the basic values and estimates the condition number).
     /// Default `None`: every [`DEFAULT_REFACTOR_PERIOD`] pivots, and for the
@@ -163,6 +210,7 @@ impl<T: Scalar> Default for Settings<T> {
             max_pivots: None,
             pivot_tol_eps: 128.0,
             tie_tol_eps: 1e3,
+            near_ties: NearTies::Refine,
             refactor_period: None,
             max_cond_eps: 1e-2,
             refine_tol_eps: 1e3,

@@ -184,3 +184,46 @@ pub const VALUES_KEPT_EPS: f64 = 8.0;
 /// the measurements). With an explicit [`crate::Settings::refactor_period`]
 /// the user's period holds instead.
 pub const FACTOR_KEPT_EPS: f64 = 64.0;
+
+// ---------------------------------------------------------------------------
+// Near ties of the minimum-ratio test (issue 14; `pivoting/ratio.rs`)
+// ---------------------------------------------------------------------------
+
+/// Safety factor of the error bounds of refined ratios (near ties): the
+/// wide residual's accumulation error and the solve's backward error are
+/// taken as this many roundings of the terms they come from
+/// (`|B^{-1}|_r (TIE_ERROR_GAMMA eps_wide |B| |x| + eps |r| + cond eps |r| +
+/// TIE_ERROR_GAMMA eps |B| |dx|)`, doubled).
+pub const TIE_ERROR_GAMMA: f64 = 8.0;
+
+/// Rows that tie in the minimum-ratio test (within the tie tolerance) are
+/// read again with values and column entries refined by one step with the
+/// residual in the wide type, each ratio with an error bound. Ratios
+/// separated beyond their bounds are the exact order (the smallest leaves).
+/// Ratios within their bounds are a tie for the lexicographic rule when the
+/// bound, as a step of `L`, is within this many `eps` of `max(1, |L|)` (of
+/// the ratio and `max(1, max |x|) / |col_r|` when `L` does not move): two
+/// breakpoints the working precision cannot tell apart. A larger bound
+/// leaves the order undecided and the trace stops `ill_conditioned` (a
+/// higher precision or exact arithmetic decides).
+///
+/// The bound is a conservative first-order one, and fx128 has no wider type
+/// to refine in (its residual is accumulated in fx128): exact ties of the
+/// paper's cantilever traced with Lemke in fx128 have bounds of 1.3 to 2.2
+/// thousand roundings of `L` (measured; 1e3 stopped that trace), while the
+/// undecided tie of the Fibonacci block of `docs/limits.md` has a bound
+/// 4.5e12 times 1e3 roundings. 1e5 keeps a factor of 45 over the first and
+/// 4.5e10 under the second.
+pub const TIE_RESOLUTION_EPS: f64 = 1e5;
+
+/// A near tie is not read again once the basis condition estimate times
+/// `eps` exceeds this (one refinement step no longer converges): it is
+/// undecided.
+pub const TIE_REFINE_MAX_COND_EPS: f64 = 0.1;
+
+/// At most this many rows whose entering-column entry is below the pivot
+/// tolerance, yet whose ratio would block first, are read again with a
+/// refined column at one ratio test (the smallest ratios;
+/// `pivoting/ratio.rs`, `read_small_entries`): an entry the refinement
+/// separates from zero beyond its error bound blocks.
+pub const SMALL_ENTRY_READS: usize = 4;

@@ -527,8 +527,12 @@ fn f32_guard_measures_the_delivered_segments() {
         })
         .map(|pt| plcp::residual::residual(&problem64, &pt).worst())
         .fold(0.0f64, f64::max);
+    // (within f32's own rounding of the measure: since near ties are read
+    // again with refined ratios, f32 separates the two breakpoints, and the
+    // residuals are ~1e-7, 1.5e-7 in f32 against 9.3e-8 in f64)
+    let eps32 = <f32 as Scalar>::eps().to_f64();
     assert!(
-        (worst64 - whole.info.residual.worst()).abs() <= 1e-3 * worst64,
+        (worst64 - whole.info.residual.worst()).abs() <= 1e-3 * worst64 + 2.0 * eps32,
         "f32 measure {:e}, f64 measure {worst64:e}",
         whole.info.residual.worst()
     );

@@ -73,7 +73,7 @@ impl TimeStepping {
             .with_range(0.0, Some(lambda_max))?;
         let settings = Settings {
             warm_basis: warm,
-            ..Settings::with_method(Method::Wolfe)
+            ..crate::solve::plcp_settings(Method::Wolfe)
         };
         Ok(plcp::solve(&problem, &settings)?)
     }

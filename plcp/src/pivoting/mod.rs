@@ -39,7 +39,7 @@ use crate::matrix::MatrixRef;
 use crate::path::{Breakpoint, Point, Residual, Segment, Var};
 use crate::scalar::Scalar;
 use crate::settings::Settings;
-use core::cell::RefCell;
+use core::cell::{Cell, RefCell};
 use faer::Col;
 
 /// How a trace ended.
@@ -181,6 +181,16 @@ pub(crate) struct Engine<'a, T: Scalar> {
     x_buf: Col<T>,
     /// The fingerprints of the bases of the current trace ([`cycle`]).
     cycle: cycle::CycleGuard,
+    /// The condition estimate of the last refactorisation (near ties, `ratio.rs`).
+    cond: f64,
+    /// Near ties of the ratio test read again with refined values: (resolved
+    /// into the exact order, left undecided); see `ratio.rs`.
+    pub near_ties: Cell<(usize, usize)>,
+    /// An undecided near tie of the last ratio test: why the trace stops
+    /// `ill_conditioned` (taken by the trace).
+    tie_alarm: RefCell<Option<String>>,
+    /// Refactorise after the next pivot (one on an entry below the noise).
+    refactor_after: Cell<bool>,
 }
 
 /// The two accumulators of [`Engine::wide_residual_pair`] (values, column).
@@ -304,6 +314,10 @@ impl<'a, T: Scalar> Engine<'a, T> {
             col_of: None,
             x_buf: Col::zeros(0),
             cycle: cycle::CycleGuard::default(),
+            cond: 1.0,
+            near_ties: Cell::new((0, 0)),
+            tie_alarm: RefCell::new(None),
+            refactor_after: Cell::new(false),
         };
         for (r, v) in basis.iter().enumerate() {
             let k = e.var_index(*v);
@@ -350,6 +364,7 @@ impl<'a, T: Scalar> Engine<'a, T> {
         self.since_refactor = 0;
         self.deferred = 0;
         self.max_cond = self.max_cond.max(cond);
+        self.cond = cond.max(1.0); // (an empty block reports 0: B = I)
         self.refine_columns = cond * T::eps().to_f64() > self.settings.refine_cond_eps;
         // on a sparse M the wide residual is a pass over the stored entries
         // (cheap): from the same threshold as the columns; on a dense M it
@@ -467,6 +482,7 @@ impl<'a, T: Scalar> Engine<'a, T> {
         self.degenerate_pivots = 0;
         self.refactorisations = 0;
         self.refinements = 0;
+        self.near_ties.set((0, 0));
         self.residual_owed = false;
         if !continues {
             self.values_and_lambda_column();

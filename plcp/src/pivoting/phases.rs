@@ -294,6 +294,7 @@ pub(crate) fn run_path<T: Scalar>(
         info.degenerate_pivots = eng.degenerate_pivots;
         info.refactorisations = eng.refactorisations;
         info.refinements = eng.refinements;
+        (info.near_ties_resolved, info.near_ties_unresolved) = eng.near_ties.get();
         info.max_condition = eng.max_cond;
     };
     let started = if method == Method::Wolfe {
@@ -342,6 +343,7 @@ pub(crate) fn finish_path<T: Scalar>(
         info.degenerate_pivots = eng.degenerate_pivots;
         info.refactorisations = eng.refactorisations;
         info.refinements = eng.refinements;
+        (info.near_ties_resolved, info.near_ties_unresolved) = eng.near_ties.get();
         info.max_condition = eng.max_cond;
     };
     if warm {

@@ -4,6 +4,14 @@
 
 use super::*;
 
+/// What [`Engine::read_near_tie`] makes of tied rows.
+enum NearTie<T> {
+    /// One row leaves first (exactly), at this step.
+    Separated(usize, T),
+    /// These rows stay tied (for the lexicographic rule).
+    Tied(Vec<usize>),
+}
+
 impl<'a, T: Scalar> Engine<'a, T> {
     /// The minimum-ratio test with the lexicographic rule. Returns the row and the step.
     ///
@@ -16,17 +24,43 @@ impl<'a, T: Scalar> Engine<'a, T> {
     /// refactorisation) let an entry of `7e-14` of a column of one, whose
     /// exact value is zero, block a secondary ray (`plcp/tests/prop_path.rs`,
     /// `f64_psd_singular_secondary_ray`).
-    pub(super) fn ratio_test(&self, col: &Col<T>) -> Option<(usize, T)> {
+    ///
+    /// `v` is the entering variable (`col = B^{-1} a_v`): rows that tie are
+    /// read again with refined values ([`Self::read_near_tie`]).
+    ///
+    /// `cap` is the step at which the trace ends (`L_max`, when `L` rises):
+    /// where no regular row blocks, entries below the pivot tolerance are
+    /// read for a block before it ([`Self::read_small_entries`]).
+    pub(super) fn ratio_test(&self, col: &Col<T>, v: Var, cap: Option<T>) -> Option<(usize, T)> {
         let small = T::eps().sqrt() * col_max_abs(col);
+        // (set again below when a small entry blocks; a test whose block
+        // was not pivoted on, L_max first, leaves nothing behind)
+        self.refactor_after.set(false);
         let mut excluded: Vec<usize> = Vec::new();
         loop {
-            let (r, theta) = self.ratio_test_excluding(col, &excluded)?;
+            let (r, theta) = self.ratio_test_excluding(col, v, cap, &excluded)?;
             let entry = col[r].abs();
+            // (a small entry that the refined column separates from zero:
+            // read_small_entries, which marks its pivot for a refactorisation)
             if entry > small
+                || self.refactor_after.get()
                 || matches!(self.basis[r], Var::Artificial(_))
                 || entry > self.pivot_tol * self.entry_rounding(r, col)
             {
                 return Some((r, theta));
+            }
+            // within its own rounding: read again with the refined column
+            // where the data are exact as given (issue 14: after an exact
+            // tie, the slack `w = delta (2 - L)` of a near-singular block
+            // stays basic at zero with a rate of `delta`, and ran negative)
+            if self.settings.near_ties == crate::settings::NearTies::Refine {
+                let read = &self.refined_ratios(v, col, &[r])[0];
+                if read.err.is_finite() {
+                    let (resolved, unresolved) = self.near_ties.get();
+                    self.near_ties.set((resolved + 1, unresolved));
+                    self.refactor_after.set(true);
+                    return Some((r, T::narrow(read.ratio).max(T::zero())));
+                }
             }
             excluded.push(r);
         }
@@ -62,7 +96,13 @@ impl<'a, T: Scalar> Engine<'a, T> {
     }
 
     /// [`Self::ratio_test`] with the rows `excluded` no candidates.
-    fn ratio_test_excluding(&self, col: &Col<T>, excluded: &[usize]) -> Option<(usize, T)> {
+    fn ratio_test_excluding(
+        &self,
+        col: &Col<T>,
+        v: Var,
+        cap: Option<T>,
+        excluded: &[usize],
+    ) -> Option<(usize, T)> {
         let colmax = col_max_abs(col);
         if colmax == T::zero() {
             return None;
@@ -120,6 +160,21 @@ impl<'a, T: Scalar> Engine<'a, T> {
                 best = Some(best.map_or(ratio, |b| b.min(ratio)));
             }
         }
+        // a row whose entry is below the tolerance may still block first
+        // (issue 14): read again where the data are exact as given, before
+        // the first regular block or, where none blocks, before the end of
+        // the trace (`cap`, L_max). Never on a ray with no end: an entry
+        // below the tolerance would turn the ray into a block far along
+        // it, from refined entries near the wide type's own resolution (a
+        // random system (9) read one at L = 2.9e31, 1.6e-30 against a bound
+        // of 7.5e-31, where the same basis's ray is certified exactly)
+        if self.settings.near_ties == crate::settings::NearTies::Refine {
+            if let Some(bound) = best.or(cap) {
+                if let Some(block) = self.read_small_entries(col, v, ptol, bound, excluded) {
+                    return Some(block);
+                }
+            }
+        }
         let tmin = best?;
         let is_tied = |r: usize| {
             ratio(r).is_some_and(|t| t - tmin <= self.tie_tol * (tmin.abs() + xnorm / col[r]))
@@ -137,6 +192,15 @@ impl<'a, T: Scalar> Engine<'a, T> {
             return Some((r, theta));
         }
         let mut tied: Vec<usize> = (0..self.dim).filter(|&r| is_tied(r)).collect();
+        // the tie window is wide (it absorbs the rounding of values that may
+        // have lost digits): the rows are read again with refined values,
+        // and those the refinement separates leave in their exact order
+        if self.settings.near_ties == crate::settings::NearTies::Refine {
+            match self.read_near_tie(v, col, &tied, xnorm) {
+                NearTie::Separated(r, theta) => return Some((r, theta)),
+                NearTie::Tied(rows) => tied = rows,
+            }
+        }
         if tied.len() > 1 {
             // lexicographic rule (crate::basis::lex)
             tied = crate::basis::lex::break_tie(
@@ -152,6 +216,227 @@ impl<'a, T: Scalar> Engine<'a, T> {
         let r = *tied.first().unwrap_or(&first_cand.expect("a candidate"));
         let theta = self.x[r].max(T::zero()) / col[r];
         Some((r, theta))
+    }
+
+    /// Rows `tied` of the minimum-ratio test (within the tie tolerance) read
+    /// again with refined values and column entries ([`Self::refined_ratios`],
+    /// each ratio with an error bound; issue 14: the block
+    /// `[[1, 1], [1, 1 + 2^-46]]` has two breakpoints `1.4e-14` apart, well
+    /// inside f64's tie window, and the lexicographic rule took the later one
+    /// first: a wrong path that nothing flagged).
+    ///
+    /// * The smallest ratio separated from every other beyond both bounds:
+    ///   its row leaves (the exact order), at the refined step.
+    /// * Else the rows within the bounds of the smallest are a tie for the
+    ///   lexicographic rule when the bound, as a step of `L`, is within
+    ///   [`crate::tolerance::TIE_RESOLUTION_EPS`] roundings of `L` (the
+    ///   precision cannot tell the breakpoints apart);
+    /// * a larger bound leaves the order undecided: counted, and the trace
+    ///   stops `ill_conditioned` naming the rows and the gap (`tie_alarm`).
+    fn read_near_tie(&self, v: Var, col: &Col<T>, tied: &[usize], xnorm: T) -> NearTie<T> {
+        let reads = self.refined_ratios(v, col, tied);
+        let decided = |k: usize| reads[k].err.is_finite();
+        let mut best: Option<usize> = None;
+        for k in 0..reads.len() {
+            if decided(k) && best.is_none_or(|b| reads[k].ratio < reads[b].ratio) {
+                best = Some(k);
+            }
+        }
+        let (resolved, unresolved) = self.near_ties.get();
+        let (keep, tb, eb) = match best {
+            Some(b) => {
+                let (tb, eb) = (reads[b].ratio, reads[b].err);
+                let keep: Vec<usize> = (0..reads.len())
+                    .filter(|&k| {
+                        k == b || !decided(k) || (reads[k].ratio - tb).to_f64() - reads[k].err <= eb
+                    })
+                    .collect();
+                if keep.len() == 1 {
+                    self.near_ties.set((resolved + 1, unresolved));
+                    // the refined step (the working value of a row that
+                    // lost digits can be off by a factor, e.g. 2^-43 read
+                    // as 2^-42); the values are recomputed after the pivot
+                    let r = tied[b];
+                    self.refactor_after.set(true);
+                    return NearTie::Separated(r, T::narrow(tb).max(T::zero()));
+                }
+                (keep, tb.to_f64(), eb)
+            }
+            // nothing could be read again (the basis is too ill-conditioned
+            // for one refinement step): the tie window's verdict stands, as
+            // before the reading (the condition guards of the trace see it)
+            None => return NearTie::Tied(tied.to_vec()),
+        };
+        let emax = keep.iter().fold(eb, |a, &k| a.max(reads[k].err));
+        let first = tied[best.unwrap_or(0)];
+        let tau = self.tie_resolution(col, tb, first, xnorm);
+        let rows: Vec<usize> = keep.iter().map(|&k| tied[k]).collect();
+        if emax <= tau {
+            return NearTie::Tied(rows);
+        }
+        self.near_ties.set((resolved, unresolved + 1));
+        let mut alarm = self.tie_alarm.borrow_mut();
+        if alarm.is_none() {
+            let names: Vec<String> = keep
+                .iter()
+                .map(|&k| {
+                    format!(
+                        "{} (step {:e} +- {:.1e})",
+                        self.basis[tied[k]],
+                        reads[k].ratio.to_f64(),
+                        reads[k].err
+                    )
+                })
+                .collect();
+            let gap = keep
+                .iter()
+                .fold(0.0f64, |a, &k| a.max((reads[k].ratio.to_f64() - tb).abs()));
+            *alarm = Some(format!(
+                "near tie at L = {:e}: {} reach zero within the error bounds of their refined ratios (gap {gap:.2e}, bound {emax:.2e}, above {} roundings of L) in {} (condition estimate at the last refactorisation {:.1e}): which leaves first is not decided in this precision; the path is not continued; use a higher precision or exact arithmetic",
+                self.lambda.to_f64(),
+                names.join(", "),
+                crate::tolerance::TIE_RESOLUTION_EPS,
+                T::NAME,
+                self.cond
+            ));
+        }
+        NearTie::Tied(rows)
+    }
+
+    /// The error bound (as a step of the entering variable) under which two
+    /// refined ratios near `tb` are one event for the working precision:
+    /// [`crate::tolerance::TIE_RESOLUTION_EPS`] roundings of `L` over the
+    /// rate of `L`, or, where `L` does not move, of the step and
+    /// `max(1, |x|) / |col_first|`.
+    fn tie_resolution(&self, col: &Col<T>, tb: f64, first: usize, xnorm: T) -> f64 {
+        let k_eps = crate::tolerance::TIE_RESOLUTION_EPS * T::eps().to_f64();
+        let rate = match self.row_of(Var::Lambda) {
+            None => 1.0,
+            Some(l) => col[l].to_f64().abs(),
+        };
+        let colmax = col_max_abs(col).to_f64();
+        if rate > self.noise.to_f64() * colmax.max(1.0) {
+            let lam = self.lambda.to_f64();
+            k_eps * 1f64.max(lam.abs()).max((lam + tb * rate).abs()) / rate
+        } else {
+            k_eps * (tb.abs() + xnorm.to_f64().max(1.0) / col[first].to_f64().abs())
+        }
+    }
+
+    /// Rows whose entry of the entering column is positive but at or below
+    /// the pivot tolerance `ptol` (no candidates of the ratio test) and whose
+    /// ratio would block before `bound` (the first regular block, or the
+    /// end of the trace), read again with the refined column
+    /// ([`Self::refined_ratios`]; issue 14: in the block
+    /// `[[1, 1], [1, 1 + 2^-46]]` with `z_1` basic, the slack
+    /// `w_2 = 2^-46 (s + 1 - L)` falls at the rate `2^-46`, below the noise
+    /// of a column of one, and f64 ran past its zero: `reached` on a wrong
+    /// path). An entry the refinement separates from zero beyond its error
+    /// bound, whose ratio stays below `bound` beyond its error bound, is the
+    /// block; the basis is then refactorised after the pivot (its update on
+    /// an entry that small is not trusted), which also estimates its
+    /// condition afresh. An entry within its bound is rounding, as before.
+    /// At most [`crate::tolerance::SMALL_ENTRY_READS`] rows (the smallest
+    /// ratios) are read; nothing is read, and nothing allocated, where no
+    /// row qualifies.
+    fn read_small_entries(
+        &self,
+        col: &Col<T>,
+        v: Var,
+        ptol: T,
+        bound: T,
+        excluded: &[usize],
+    ) -> Option<(usize, T)> {
+        // a row can block before `bound` with an entry at most `ptol` only if
+        // its value is below `bound * ptol`; its working entry may be any
+        // rounding of a small one, zero or negative included (after a
+        // refactorisation the block's `2^-46` came out as an exact zero)
+        // (and the working value itself may be a rounding of a small one:
+        // the pivot noise of the values' scale on top)
+        let reach = bound * ptol + self.noise * self.xscale();
+        let qualifies = |r: usize| {
+            let c = col[r];
+            (is_comp(self.basis[r])
+                && c.abs() <= ptol
+                && self.x[r] <= reach
+                && !excluded.contains(&r))
+            .then(|| self.x[r].max(T::zero()))
+        };
+        if !(0..self.dim).any(|r| qualifies(r).is_some()) {
+            return None;
+        }
+        let mut rows: Vec<(T, usize)> = (0..self.dim)
+            .filter_map(|r| qualifies(r).map(|t| (t, r)))
+            .collect();
+        rows.sort_by(|a, b| a.0.partial_cmp(&b.0).unwrap_or(core::cmp::Ordering::Equal));
+        rows.truncate(crate::tolerance::SMALL_ENTRY_READS);
+        let rows: Vec<usize> = rows.into_iter().map(|(_, r)| r).collect();
+        let reads = self.refined_ratios(v, col, &rows);
+        let mut best: Option<(usize, T::Wide, f64)> = None;
+        for (k, read) in reads.iter().enumerate() {
+            // (an infinite bound: the entry is not separated from zero)
+            if !read.err.is_finite() {
+                continue;
+            }
+            // (a refined step of zero is a block too: after the exact tie
+            // of near_ties.rs at L = 2.5 the slack w = 2^-43 (2.5 - L)
+            // stays basic at -2.5e-29 on an entry of 4.5e-13, step 0 +-
+            // 1.4e-16, and runs negative if it is not taken)
+            let t = read.ratio.to_f64();
+            if t + read.err >= bound.to_f64() {
+                continue;
+            }
+            if best.is_none_or(|(_, b, _)| read.ratio < b) {
+                best = Some((rows[k], read.ratio, read.err));
+            }
+        }
+        let (resolved, unresolved) = self.near_ties.get();
+        let (r, ratio, err) = best?;
+        // small entries within each other's bounds: one event where the
+        // bounds are within the precision's resolution of L (the row with
+        // the largest working entry pivots), else which leaves first is not
+        // decided in this precision (counted; the trace stops)
+        let rivals: Vec<usize> = (0..reads.len())
+            .filter(|&k| {
+                let read = &reads[k];
+                rows[k] != r
+                    && read.err.is_finite()
+                    && (read.ratio - ratio).to_f64() - read.err <= err
+            })
+            .collect();
+        let mut r = r;
+        if let Some(&k) = rivals.first() {
+            let emax = rivals.iter().fold(err, |a, &k| a.max(reads[k].err));
+            let tau = self.tie_resolution(col, ratio.to_f64(), r, self.xscale());
+            if emax <= tau {
+                for &k in &rivals {
+                    if col[rows[k]] > col[r] {
+                        r = rows[k];
+                    }
+                }
+            } else {
+                let read = &reads[k];
+                self.near_ties.set((resolved, unresolved + 1));
+                let mut alarm = self.tie_alarm.borrow_mut();
+                if alarm.is_none() {
+                    *alarm = Some(format!(
+                        "near tie at L = {:e}: {} (step {:e} +- {:.1e}) and {} (step {:e} +- {:.1e}) block within the error bounds of their refined ratios, on column entries below the pivot tolerance, in {}: which leaves first is not decided in this precision; the path is not continued; use a higher precision or exact arithmetic",
+                        self.lambda.to_f64(),
+                        self.basis[r],
+                        ratio.to_f64(),
+                        err,
+                        self.basis[rows[k]],
+                        read.ratio.to_f64(),
+                        read.err,
+                        T::NAME
+                    ));
+                }
+                return None;
+            }
+        }
+        self.near_ties.set((resolved + 1, unresolved));
+        self.refactor_after.set(true);
+        Some((r, T::narrow(ratio).max(T::zero())))
     }
 
     /// Pivot `entering` (column `col = B^{-1} a`, value `value`) into row `r`.
@@ -196,6 +481,10 @@ impl<'a, T: Scalar> Engine<'a, T> {
             self.refactor()?;
         }
         self.x[r] = value;
+        if self.refactor_after.take() {
+            // (a pivot on an entry below the noise: read_small_entries)
+            self.refactor()?;
+        }
         self.pivots += 1;
         self.since_refactor += 1;
         if self

@@ -483,3 +483,166 @@ impl<'a, T: Scalar> Engine<'a, T> {
         }
     }
 }
+
+/// A row of the minimum-ratio test read again with refined values
+/// ([`Engine::refined_ratios`]): the ratio `x_r / col_r` in the wide type and
+/// a bound on its error (`f64::INFINITY`: not decided).
+pub(super) struct RefinedRatio<W> {
+    pub ratio: W,
+    pub err: f64,
+}
+
+impl<T: Scalar> Engine<'_, T> {
+    /// The ratios `x_r / col_r` of the rows `rows` with the basic values `x`
+    /// and the entering column `col = B^{-1} a_v` refined by one step whose
+    /// residual is accumulated in [`Scalar::Wide`] (the right-hand side
+    /// `q + L d` formed there too), each sum `x_r + dx_r` kept in the wide
+    /// type, and a first-order bound on each ratio's error:
+    ///
+    /// `err(x_r) <= 2 |B^{-1}|_r (g eps_w (|rhs| + |B| |x|) + (1 + cond) eps |r|
+    ///   + g eps |B| |dx|) + eps_w |x_r|`
+    ///
+    /// (the wide residual's accumulation, its rounding to the working type,
+    /// the solve of the correction: backward error `g eps |B| |dx|`, or
+    /// `cond eps` of `|B^{-1}| |r|` for an explicit inverse; `g` =
+    /// [`crate::tolerance::TIE_ERROR_GAMMA`]), the same for `col_r`, and the
+    /// ratio's from both. One pass over the basic columns for the residuals,
+    /// one for `|B| |dx|`, a two-column solve and a transpose solve per row:
+    /// spent on ties only.
+    pub(super) fn refined_ratios(
+        &self,
+        v: Var,
+        col: &Col<T>,
+        rows: &[usize],
+    ) -> Vec<RefinedRatio<T::Wide>> {
+        use crate::tolerance::{TIE_ERROR_GAMMA, TIE_REFINE_MAX_COND_EPS};
+        let dim = self.dim;
+        let (m, p) = (self.m, self.p);
+        let eps = T::eps().to_f64();
+        let eps_w = <T::Wide as Scalar>::eps().to_f64();
+        let g = TIE_ERROR_GAMMA;
+        let undecided = || {
+            rows.iter()
+                .map(|_| RefinedRatio {
+                    ratio: T::zero().widen(),
+                    err: f64::INFINITY,
+                })
+                .collect()
+        };
+        if self.cond.is_nan() || self.cond * eps > TIE_REFINE_MAX_COND_EPS {
+            return undecided();
+        }
+        let l_basic = self.row_of(Var::Lambda).is_some();
+        let a = var_column(m, &self.d, p, v);
+        let mut acc: Vec<T::Wide> = (0..dim)
+            .map(|i| {
+                if l_basic {
+                    self.q[i].widen()
+                } else {
+                    self.q[i].widen() + T::mul_wide(self.lambda, self.d[i])
+                }
+            })
+            .collect();
+        let mut acc_c: Vec<T::Wide> = (0..dim).map(|i| a[i].widen()).collect();
+        // |rhs| + |B| |x| and |a_v| + |B| |col|: the terms of each row
+        let mut sx: Vec<f64> = (0..dim)
+            .map(|i| {
+                let l = if l_basic {
+                    0.0
+                } else {
+                    (self.lambda * self.d[i]).to_f64().abs()
+                };
+                self.q[i].to_f64().abs() + l
+            })
+            .collect();
+        let mut sc: Vec<f64> = (0..dim).map(|i| a[i].to_f64().abs()).collect();
+        for (k, b) in self.basis.iter().enumerate() {
+            let (xk, ck) = (self.x[k], col[k]);
+            if xk == T::zero() && ck == T::zero() {
+                continue;
+            }
+            let (xa, ca) = (xk.to_f64().abs(), ck.to_f64().abs());
+            // the column of a matrix variable is -M[:, j] (of L: -d), so r += M x
+            let mut add = |i: usize, e: T| {
+                acc[i] = T::wide_mul_add(acc[i], e, xk);
+                acc_c[i] = T::wide_mul_add(acc_c[i], e, ck);
+                let ea = e.to_f64().abs();
+                sx[i] += ea * xa;
+                sc[i] += ea * ca;
+            };
+            match *b {
+                Var::U(j) => m.for_col(j, add),
+                Var::Z(j) => m.for_col(p + j, add),
+                Var::Lambda => self.d_rows.iter().for_each(|&i| add(i, self.d[i])),
+                Var::W(i) => add(p + i, -T::one()),
+                Var::Artificial(i) => add(i, -T::one()),
+            }
+        }
+        let r = Col::from_fn(dim, |i| T::narrow(acc[i]));
+        let rc = Col::from_fn(dim, |i| T::narrow(acc_c[i]));
+        let (dx, dc) = self.factor.solve2(r.clone(), rc.clone());
+        // |B| |dx| and |B| |dc|
+        let (mut sdx, mut sdc) = (vec![0.0f64; dim], vec![0.0f64; dim]);
+        for (k, b) in self.basis.iter().enumerate() {
+            let (xa, ca) = (dx[k].to_f64().abs(), dc[k].to_f64().abs());
+            if xa == 0.0 && ca == 0.0 {
+                continue;
+            }
+            let mut add = |i: usize, e: T| {
+                let ea = e.to_f64().abs();
+                sdx[i] += ea * xa;
+                sdc[i] += ea * ca;
+            };
+            match *b {
+                Var::U(j) => m.for_col(j, add),
+                Var::Z(j) => m.for_col(p + j, add),
+                Var::Lambda => self.d_rows.iter().for_each(|&i| add(i, self.d[i])),
+                Var::W(i) => add(p + i, -T::one()),
+                Var::Artificial(i) => add(i, -T::one()),
+            }
+        }
+        let solve_eps = (1.0 + self.cond) * eps;
+        let l_row = self.row_of(Var::Lambda);
+        rows.iter()
+            .map(|&row| {
+                let mut e = Col::<T>::zeros(dim);
+                e[row] = T::one();
+                let inv = self.factor.solve_transpose(&e);
+                let (mut bx, mut bc) = (0.0f64, 0.0f64);
+                for i in 0..dim {
+                    let w = inv[i].to_f64().abs();
+                    if w == 0.0 {
+                        continue;
+                    }
+                    let rx = r[i].to_f64().abs();
+                    let rcx = rc[i].to_f64().abs();
+                    bx += w * (g * eps_w * sx[i] + solve_eps * rx + g * eps * sdx[i]);
+                    bc += w * (g * eps_w * sc[i] + solve_eps * rcx + g * eps * sdc[i]);
+                }
+                // (L, if basic, is the path's parameter: its row is exact)
+                let fixed = Some(row) == l_row;
+                let xw = if fixed {
+                    self.x[row].widen()
+                } else {
+                    self.x[row].widen() + dx[row].widen()
+                };
+                let cw = col[row].widen() + dc[row].widen();
+                let ex = 2.0 * bx + eps_w * xw.to_f64().abs();
+                let ec = 2.0 * bc + eps_w * cw.to_f64().abs();
+                let zero = T::zero().widen();
+                let xw = if xw > zero { xw } else { zero };
+                let c = cw.to_f64();
+                if c.is_nan() || c <= ec || !ex.is_finite() || !ec.is_finite() {
+                    return RefinedRatio {
+                        ratio: zero,
+                        err: f64::INFINITY,
+                    };
+                }
+                let ratio = xw / cw;
+                let t = ratio.to_f64();
+                let err = (ex + t * ec) / (c - ec) + 4.0 * eps_w * t;
+                RefinedRatio { ratio, err }
+            })
+            .collect()
+    }
+}

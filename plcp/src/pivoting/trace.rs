@@ -103,7 +103,18 @@ impl<'a, T: Scalar> Engine<'a, T> {
                     T::NAME
                 ));
             }
-            let block = self.ratio_test(&col);
+            // the step at which L reaches its end (small entries are read
+            // for a block before it, ratio.rs)
+            let cap = match (rising, lambda_end) {
+                (true, Some(end)) => Some(((end - self.lambda) / rate).max(T::zero())),
+                _ => None,
+            };
+            let block = self.ratio_test(&col, driver, cap);
+            if let Some(msg) = self.tie_alarm.take() {
+                // a near tie the precision cannot order (ratio.rs)
+                self.col_buf = col;
+                return TraceEnd::IllConditioned(msg);
+            }
             if let (true, Some(end)) = (rising, lambda_end) {
                 let theta_end = (end - self.lambda) / rate;
                 // a block at the end value (within the tie tolerance relative to
