@@ -77,7 +77,7 @@ fn cantilever(c: &mut Criterion) {
         if n <= 100 {
             // the dense form with the block basis, as before the sparse route
             let problem = system.plcp::<f64>(None).expect("valid");
-            let settings = plcp::Settings::<f64>::with_method(plcp::Method::Wolfe);
+            let settings = frames::solve::plcp_settings::<f64>(plcp::Method::Wolfe);
             group.bench_with_input(BenchmarkId::new("path-dense", n), &problem, |b, p| {
                 b.iter(|| plcp::solve(p, &settings).expect("valid settings"))
             });

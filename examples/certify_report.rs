@@ -78,6 +78,10 @@ fn main() {
         let system = System::assemble(&scene.frame);
         let problem = system.plcp::<f64>(None).expect("system (9) is valid");
         let name = f.strip_prefix(root).unwrap_or(&f).display().to_string();
-        row(&name, &problem, &Settings::with_method(Method::Wolfe));
+        row(
+            &name,
+            &problem,
+            &frames::solve::plcp_settings(Method::Wolfe),
+        );
     }
 }

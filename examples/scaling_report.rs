@@ -123,7 +123,7 @@ fn list<T: std::str::FromStr>(args: &[String], flag: &str, default: &str) -> Vec
 
 /// One trace of the `n`-element cantilever's system (9), nothing stored.
 fn trace_one(n: usize) -> Result<(), String> {
-    use plcp::{BasisKind, Control, Keep, Method, Settings, Var};
+    use plcp::{BasisKind, Control, Keep, Method, Var};
     let scene = frames::Scene::from_toml(&cantilever_toml(n), "cantilever.toml")
         .map_err(|e| e.to_string())?;
     let t0 = std::time::Instant::now();
@@ -132,7 +132,8 @@ fn trace_one(n: usize) -> Result<(), String> {
         .plcp_sparse::<f64>(Some(12.0))
         .map_err(|e| e.to_string())?;
     let assembled = t0.elapsed().as_secs_f64();
-    let mut settings = Settings::<f64>::with_method(Method::Wolfe);
+    // frames' settings (near ties within the window are one event)
+    let mut settings = frames::solve::plcp_settings::<f64>(Method::Wolfe);
     settings.basis = BasisKind::Sparse;
     // the mode (index into z) whose section sits nearest x = 1/4, 1/2, 3/4
     let xs = [0.25, 0.5, 0.75];

@@ -10,7 +10,7 @@
 //! (`PLCP_CANTILEVER_F64_ONLY=1`: the f64 path alone, for profiling).
 
 use frames::{Scene, System};
-use plcp::{BasisKind, Method, Path, Scalar, Settings};
+use plcp::{BasisKind, Method, Path, Scalar};
 use std::time::Instant;
 
 fn cantilever(n: usize) -> System {
@@ -26,7 +26,8 @@ fn cantilever(n: usize) -> System {
 /// The sparse route's path of `system` in `T`, and its solve time in seconds.
 fn sparse_path<T: Scalar>(system: &System) -> (Path<T>, f64) {
     let problem = system.plcp_sparse::<T>(None).expect("valid system");
-    let mut settings = Settings::<T>::with_method(Method::Wolfe);
+    // frames' settings (near ties within the window are one event)
+    let mut settings = frames::solve::plcp_settings::<T>(Method::Wolfe);
     settings.basis = BasisKind::Sparse;
     let t = Instant::now();
     let path = plcp::solve(&problem, &settings).expect("valid settings");
