@@ -255,14 +255,6 @@ pub(crate) trait BasisFactor<T: Scalar> {
     fn refactor_due(&self, since: usize, period: Option<usize>) -> bool {
         since >= period.unwrap_or(DEFAULT_REFACTOR_PERIOD)
     }
-    /// The condition estimate [`Self::refactor`] would report for the
-    /// current basis, from the updated factor without refactorising, where
-    /// the representation computes it cheaply (`None`: it does not). The
-    /// block basis: the same 1-norms as its refactorisation, of its kept `S`
-    /// and its updated `S^{-1}` (`O(k^2 + (p+n) k)`).
-    fn condition_now(&self) -> Option<f64> {
-        None
-    }
     /// Whether the last solve was refined inside, when [`Self::set_refine`]
     /// asked for it (a representation may skip refinement that does nothing).
     /// Default: true.

@@ -191,10 +191,6 @@ pub(crate) struct Engine<'a, T: Scalar> {
     tie_alarm: RefCell<Option<String>>,
     /// Refactorise after the next pivot (one on an entry below the noise).
     refactor_after: Cell<bool>,
-    /// The periodic refactorisation waits for the next pivot (`ratio.rs`,
-    /// `Engine::pivot`): set where the basis estimates its condition without
-    /// one ([`BasisFactor::condition_now`], the block basis).
-    lazy_refactor: bool,
 }
 
 /// The two accumulators of [`Engine::wide_residual_pair`] (values, column).
@@ -322,7 +318,6 @@ impl<'a, T: Scalar> Engine<'a, T> {
             near_ties: Cell::new((0, 0)),
             tie_alarm: RefCell::new(None),
             refactor_after: Cell::new(false),
-            lazy_refactor: matches!(settings.basis, crate::settings::BasisKind::Block),
         };
         for (r, v) in basis.iter().enumerate() {
             let k = e.var_index(*v);

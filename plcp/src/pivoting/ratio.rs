@@ -4,36 +4,6 @@
 
 use super::*;
 
-/// The rows of the minimum-ratio test: their ratios, if candidates (`z`/`w`
-/// rows whose entry is above the pivot tolerance `ptol`, not `excluded`),
-/// and ties. Methods always inlined: as closures their calls, one per row
-/// and pass, were left out of line by some builds (issue 20).
-struct Candidates<'c, T: Scalar> {
-    basis: &'c [Var],
-    col: &'c [T],
-    x: &'c [T],
-    ptol: T,
-    excluded: &'c [usize],
-}
-
-impl<T: Scalar> Candidates<'_, T> {
-    /// The ratio of row `r`, if it is a candidate.
-    #[inline(always)]
-    fn ratio(&self, r: usize) -> Option<T> {
-        let c = self.col[r];
-        (is_comp(self.basis[r]) && c > self.ptol && !self.excluded.contains(&r))
-            .then(|| self.x[r].max(T::zero()) / c)
-    }
-
-    /// Whether row `r` ties the smallest ratio `tmin` (within `tol`
-    /// relative to `tmin` and the values' scale `xnorm` over its entry).
-    #[inline(always)]
-    fn tied(&self, r: usize, tmin: T, xnorm: T, tol: T) -> bool {
-        self.ratio(r)
-            .is_some_and(|t| t - tmin <= tol * (tmin.abs() + xnorm / self.col[r]))
-    }
-}
-
 /// What [`Engine::read_near_tie`] makes of tied rows.
 enum NearTie<T> {
     /// One row leaves first (exactly), at this step.
@@ -179,16 +149,13 @@ impl<'a, T: Scalar> Engine<'a, T> {
         let mut best: Option<T> = None;
         // the candidates (rows and ratios), recomputed in the second pass
         // rather than collected: no allocation unless several rows tie
-        let cands = Candidates {
-            basis: &self.basis,
-            col: col_slice(col),
-            x: col_slice(&self.x),
-            ptol,
-            excluded,
+        let ratio = |r: usize| {
+            (is_comp(self.basis[r]) && col[r] > ptol && !excluded.contains(&r))
+                .then(|| self.x[r].max(T::zero()) / col[r])
         };
         let mut first_cand = None;
         for r in 0..self.dim {
-            if let Some(ratio) = cands.ratio(r) {
+            if let Some(ratio) = ratio(r) {
                 first_cand.get_or_insert(r);
                 best = Some(best.map_or(ratio, |b| b.min(ratio)));
             }
@@ -209,10 +176,12 @@ impl<'a, T: Scalar> Engine<'a, T> {
             }
         }
         let tmin = best?;
-        let tol = self.tie_tol;
+        let is_tied = |r: usize| {
+            ratio(r).is_some_and(|t| t - tmin <= self.tie_tol * (tmin.abs() + xnorm / col[r]))
+        };
         let (mut n_tied, mut first) = (0usize, None);
         for r in 0..self.dim {
-            if cands.tied(r, tmin, xnorm, tol) {
+            if is_tied(r) {
                 n_tied += 1;
                 first.get_or_insert(r);
             }
@@ -222,9 +191,7 @@ impl<'a, T: Scalar> Engine<'a, T> {
             let theta = self.x[r].max(T::zero()) / col[r];
             return Some((r, theta));
         }
-        let mut tied: Vec<usize> = (0..self.dim)
-            .filter(|&r| cands.tied(r, tmin, xnorm, tol))
-            .collect();
+        let mut tied: Vec<usize> = (0..self.dim).filter(|&r| is_tied(r)).collect();
         // the tie window is wide (it absorbs the rounding of values that may
         // have lost digits): the rows are read again with refined values,
         // and those the refinement separates leave in their exact order
@@ -473,22 +440,6 @@ impl<'a, T: Scalar> Engine<'a, T> {
     }
 
     /// Pivot `entering` (column `col = B^{-1} a`, value `value`) into row `r`.
-    ///
-    /// The periodic refactorisation is lazy (the block basis, which gives the
-    /// condition estimate of its updated factor without one,
-    /// [`crate::basis::BasisFactor::condition_now`]; the others refactorise
-    /// at once): the pivot that makes it due
-    /// ([`crate::basis::BasisFactor::refactor_due`]) only leaves it owed
-    /// ([`Self::refactor_owed`]), and the next pivot makes it after its own
-    /// update (the entering column was solved with the factor it updates;
-    /// a refactorisation before the update would mix a fresh factor with a
-    /// column of the old one). A path whose last pivot made it due ends
-    /// without it: at n = 100 and 200 on the bench instances that one was
-    /// 15..16 % of a call, for a factor only the last segment used. The
-    /// segment in between is traced on the updated factor, as every segment
-    /// between two refactorisations is; its breakpoint's residual is
-    /// measured and refined as always, and a residual above the guard makes
-    /// the owed refactorisation at once (`entering_column`).
     pub(super) fn pivot(
         &mut self,
         r: usize,
@@ -496,32 +447,6 @@ impl<'a, T: Scalar> Engine<'a, T> {
         col: &Col<T>,
         value: T,
     ) -> Result<(), String> {
-        self.pivot_with(r, entering, col, value, true)
-    }
-
-    /// Whether the refactorisation period has passed at an earlier pivot:
-    /// the next pivot refactorises (see [`Self::pivot`]).
-    pub(super) fn refactor_owed(&self) -> bool {
-        self.lazy_refactor
-            && self.since_refactor > 0
-            && self
-                .factor
-                .refactor_due(self.since_refactor, self.settings.refactor_period)
-    }
-
-    /// [`Self::pivot`]; with `pay_owed` false an owed refactorisation stays
-    /// owed (`settle`: its callers refactorise next, or the solver's drift
-    /// policy decides, `Solver::keep`).
-    pub(super) fn pivot_with(
-        &mut self,
-        r: usize,
-        entering: Var,
-        col: &Col<T>,
-        value: T,
-        pay_owed: bool,
-    ) -> Result<(), String> {
-        // (read before the update: the period as of the last pivot)
-        let owed = pay_owed && self.refactor_owed();
         let leaving = self.basis[r];
         if self.trace_pivots {
             eprintln!(
@@ -556,19 +481,16 @@ impl<'a, T: Scalar> Engine<'a, T> {
             self.refactor()?;
         }
         self.x[r] = value;
-        // (refactor_after: a pivot on an entry below the noise,
-        // read_small_entries; `owed`: the period, one pivot late)
-        if self.refactor_after.take() || (owed && updated) {
+        if self.refactor_after.take() {
+            // (a pivot on an entry below the noise: read_small_entries)
             self.refactor()?;
         }
         self.pivots += 1;
         self.since_refactor += 1;
-        if !self.lazy_refactor
-            && self
-                .factor
-                .refactor_due(self.since_refactor, self.settings.refactor_period)
+        if self
+            .factor
+            .refactor_due(self.since_refactor, self.settings.refactor_period)
         {
-            // (a representation without `condition_now`: at once, as before)
             self.refactor()?;
         }
         Ok(())

@@ -21,15 +21,6 @@ impl<'a, T: Scalar> Engine<'a, T> {
         mut rec: Option<&mut Recorder<T>>,
     ) -> TraceEnd<T> {
         let end = self.trace_steps(lambda_end, rec.as_deref_mut());
-        if self.refactor_owed() {
-            // a trace whose last pivot made the periodic refactorisation due
-            // ends without it (`pivot`); its condition estimate, which the
-            // path reports (`Info::max_condition`: the escalation and frames'
-            // force tolerance read it), from the updated factor
-            if let Some(cond) = self.factor.condition_now() {
-                self.max_cond = self.max_cond.max(cond);
-            }
-        }
         if self.residual_owed {
             // only a pivot limit ends the trace between a breakpoint and the next
             // column: the values are still those of the breakpoint
@@ -71,21 +62,8 @@ impl<'a, T: Scalar> Engine<'a, T> {
                 && !self.residual_owed
                 && col.nrows() == self.dim;
             if !ahead {
-                loop {
-                    match self.entering_column(driver, rec.as_deref_mut(), &mut col) {
-                        Ok(()) => break,
-                        // a breakpoint's residual above the guard while the
-                        // periodic refactorisation is owed (`pivot`): made now,
-                        // and the values from the fresh factor measured again
-                        // (once: none is owed after it)
-                        Err(_) if self.refactor_owed() => {
-                            if let Err(msg) = self.refactor() {
-                                return TraceEnd::IllConditioned(msg);
-                            }
-                            self.residual_owed = true;
-                        }
-                        Err(msg) => return TraceEnd::IllConditioned(msg),
-                    }
+                if let Err(msg) = self.entering_column(driver, rec.as_deref_mut(), &mut col) {
+                    return TraceEnd::IllConditioned(msg);
                 }
             }
             let colmax = col_max_abs(&col);
@@ -412,10 +390,7 @@ impl<'a, T: Scalar> Engine<'a, T> {
         if self.col_of.take() != held || col.nrows() != self.dim {
             self.column_into(driver, &mut col);
         }
-        // (an owed refactorisation stays owed: the start phase's
-        // `reset_system` refactorises next, the solver decides on the
-        // evidence of the end residual, `Solver::keep`)
-        let done = self.pivot_with(l, driver, &col, theta, false);
+        let done = self.pivot(l, driver, &col, theta);
         self.col_buf = col;
         done
     }

@@ -641,47 +641,6 @@ impl<T: Scalar> BasisFactor<T> for BlockInverse<T> {
         self.refined.get()
     }
 
-    fn condition_now(&self) -> Option<f64> {
-        // the estimate of `refactor` (and `invert_par`) on the kept matrices:
-        // cond_1(S D) (1 + |C D|_1), D the powers of two of the basic
-        // columns' full 1-norms; (S D)^{-1} = D^{-1} S^{-1}, whose row b is
-        // S^{-1}'s row b times sc[b]
-        self.flush(None);
-        let (k, dim) = (self.k, self.dim);
-        let nu: Vec<f64> = col_norms1(self.g.as_ref().subcols(0, k))
-            .into_iter()
-            .map(pow2)
-            .collect();
-        let sc: Vec<f64> = nu.iter().map(|&s| pow2(s)).collect();
-        let s = self.s.as_ref();
-        let mut norm_s = 0.0f64;
-        for (b, &c) in sc.iter().enumerate() {
-            let col = &col_of(s, b)[..k];
-            norm_s = norm_s.max(col.iter().fold(0.0, |a, v| a + v.to_f64().abs()) / c);
-        }
-        let sinv = self.sinv.borrow();
-        let mut norm_inv = 0.0f64;
-        for a in 0..k {
-            let col = &col_of(sinv.as_ref(), a)[..k];
-            let t = col
-                .iter()
-                .zip(&sc)
-                .fold(0.0f64, |acc, (v, &c)| acc + v.to_f64().abs() * c);
-            norm_inv = norm_inv.max(t);
-        }
-        let cnorm = (0..k).fold(0.0f64, |acc, b| {
-            let mut s = 0.0;
-            for (i, &v) in col_of(self.g.as_ref(), b)[..dim].iter().enumerate() {
-                if self.row_block[i].is_none() {
-                    s += v.to_f64().abs();
-                }
-            }
-            acc.max(s / nu[b])
-        });
-        let cond = norm_s * norm_inv * (1.0 + cnorm);
-        cond.is_finite().then_some(cond)
-    }
-
     fn set_refine(&mut self, on: bool) -> bool {
         // Below this order the caller's full refinement step (two passes over
         // the basic columns) costs little, and it stays the reference: the two
