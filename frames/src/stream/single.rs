@@ -290,12 +290,12 @@ impl<'a> Single<'a> {
     }
 
     /// Piece `k`, just read by `reader`.
-    pub(super) fn piece(&mut self, k: usize, p: &Piece, reader: &hinge::Reader<'_>) {
+    pub(super) fn piece(&mut self, k: usize, p: Piece, reader: &hinge::Reader<'_>) {
         if self.failed {
             return;
         }
         let intervals = reader.intervals();
-        self.read_new(Some((k, p)), intervals, reader.breakpoints());
+        self.read_new(Some((k, &p)), intervals, reader.breakpoints());
         if self.gc {
             let keep: std::collections::HashSet<usize> = self
                 .wanted
@@ -312,7 +312,7 @@ impl<'a> Single<'a> {
                     .last()
                     .is_some_and(|sp| sp.piece == k)
             {
-                self.retained.insert(k, p.clone());
+                self.retained.insert(k, p);
             }
         }
         // every later knot is at or above the frontier's time
