@@ -993,3 +993,103 @@ impl serde::Serialize for JsonReport<'_> {
         map.end()
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::model::{Frame, Scene};
+
+    /// The moment distribution as the report built it before
+    /// [`MemberMoments`] (a `Value` per member, per element end).
+    fn built<V: serde::Serialize + Copy>(fr: &Frame, value: impl Fn(usize) -> V) -> Value {
+        let mut out = Map::new();
+        for m in &fr.members {
+            let mut along = Vec::new();
+            let mut s = 0.0;
+            for e in m.elements.clone() {
+                along.push(json!([s, value(2 * e)]));
+                s += fr.elements[e].length;
+                along.push(json!([s, value(2 * e + 1)]));
+            }
+            out.insert(
+                m.id.clone(),
+                json!({"from": value(2 * m.elements.start), "to": value(2 * m.elements.end - 1), "along": along}),
+            );
+        }
+        Value::Object(out)
+    }
+
+    /// Values per section with the cases a distribution meets: signs, a
+    /// negative zero, a NaN and infinities (written as null).
+    fn value(k: usize) -> f64 {
+        match k % 7 {
+            0 => -0.0,
+            3 if k % 2 == 1 => f64::NAN,
+            5 if k % 3 == 0 => f64::INFINITY,
+            5 => f64::NEG_INFINITY,
+            _ => (k as f64) * 0.37 - 1.0 / (1.0 + k as f64),
+        }
+    }
+
+    /// [`MemberMoments`] writes the bytes of the values it replaces, compact
+    /// and pretty, for the members of every scene (ids sorted apart from
+    /// scene order in the portals and frames), with plain and affine
+    /// values; [`WithEntry`] writes the object holding the same entries.
+    #[test]
+    fn member_moments_write_the_values_they_replace() {
+        let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../scenes");
+        let mut checked = 0;
+        for dir in [root.clone(), root.join("pipe-whip"), root.join("stiff")] {
+            for e in std::fs::read_dir(dir).unwrap() {
+                let path = e.unwrap().path();
+                if path.extension().is_none_or(|x| x != "toml") {
+                    continue;
+                }
+                let fr = Scene::from_file(&path).unwrap().frame;
+                let name = path.display().to_string();
+                let plain = MemberMoments { frame: &fr, value };
+                let affine = MemberMoments {
+                    frame: &fr,
+                    value: |k: usize| [value(k), value(k + 3)],
+                };
+                let (bp, ba) = (built(&fr, value), built(&fr, |k| [value(k), value(k + 3)]));
+                for (ours, theirs) in [
+                    (serde_json::to_string(&plain), serde_json::to_string(&bp)),
+                    (serde_json::to_string(&affine), serde_json::to_string(&ba)),
+                    (
+                        serde_json::to_string_pretty(&plain),
+                        serde_json::to_string_pretty(&bp),
+                    ),
+                    (
+                        serde_json::to_string_pretty(&affine),
+                        serde_json::to_string_pretty(&ba),
+                    ),
+                ] {
+                    assert_eq!(ours.unwrap(), theirs.unwrap(), "{name}");
+                }
+                assert_eq!(serde_json::to_value(&plain).unwrap(), bp, "{name}");
+                // an object of values and the moments under a key between,
+                // before and after theirs
+                for key in ["members", "a", "zz", "lambda"] {
+                    let mut values = Map::new();
+                    values.insert("lambda".into(), json!(1.5));
+                    values.insert("second_forces".into(), json!({}));
+                    let mut whole = values.clone();
+                    whole.insert(key.into(), bp.clone());
+                    let ours = WithEntry {
+                        values: &values,
+                        key,
+                        extra: MemberMoments { frame: &fr, value },
+                    };
+                    assert_eq!(
+                        serde_json::to_string_pretty(&ours).unwrap(),
+                        serde_json::to_string_pretty(&Value::Object(whole)).unwrap(),
+                        "{name} {key}"
+                    );
+                }
+                checked += 1;
+            }
+        }
+        assert!(checked >= 20, "{checked}");
+    }
+}
