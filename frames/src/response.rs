@@ -236,8 +236,15 @@ pub(crate) fn affine_accelerations(
     if iv.rigid {
         return (vec![0.0; nb], vec![0.0; nb]);
     }
-    let u0 = piece.u(0.0);
-    (u0[..nb].to_vec(), piece.du[..nb].to_vec())
+    // `piece.u(0.0)` (`from + slope (0 - lambda_from)`) for the first `nb`
+    // entries only
+    let dl = 0.0 - piece.lambda_from;
+    let base = piece.u_from[..nb]
+        .iter()
+        .zip(&piece.du[..nb])
+        .map(|(a, b)| a + b * dl)
+        .collect();
+    (base, piece.du[..nb].to_vec())
 }
 
 /// A default end time: `Lambda` reaches 1.5 times the last critical value (or

@@ -94,8 +94,15 @@ pub struct Solution {
     pub tolerance: f64,
 }
 
+/// The entries of `c` in `f64`, read over its slice (an owned column is
+/// contiguous): for `f64` a plain copy that vectorises, not an indexed,
+/// bounds-checked read per entry (this runs on the trace thread, once per
+/// segment for six vectors of the system's size).
 fn to_vec<T: Scalar>(c: &faer::Col<T>) -> Vec<f64> {
-    (0..c.nrows()).map(|i| c[i].to_f64()).collect()
+    match c.as_ref().try_as_col_major() {
+        Some(s) => s.as_slice().iter().map(|x| x.to_f64()).collect(),
+        None => (0..c.nrows()).map(|i| c[i].to_f64()).collect(),
+    }
 }
 
 fn piece<T: Scalar>(s: &Segment<T>) -> Piece {

@@ -5,6 +5,7 @@ use super::num;
 use super::{HingeSets, OutputSelection};
 use crate::analysis::Analysis;
 use crate::hinge::{section_name, EventKind, HingeEvent};
+use crate::response::TimeResponse;
 use serde_json::{json, Map, Value};
 
 impl Analysis {
@@ -137,13 +138,10 @@ impl Analysis {
             ("targets", Part::Value(json!(self.targets_json()))),
             (
                 "response",
-                Part::Value(json!({
-                    "history": self.response.time.history.describe(),
-                    "method": self.response.time.method,
-                    "times": self.response.time.times,
-                    "lambda": self.response.time.lambda,
-                    "nodes": self.nodes_json(&node_sel),
-                })),
+                Part::Response(ResponsePart {
+                    analysis: self,
+                    nodes: node_sel.clone(),
+                }),
             ),
         ] {
             report.insert_part(key, part);
@@ -353,79 +351,59 @@ impl Analysis {
         }
     }
 
-    /// The member forces of an interval piece by piece (`pieces`), and at
-    /// the interval's level (`moments`, `second_forces`) only where one
-    /// piece holds the whole interval (null where the path pivots inside
-    /// it: no one affine field is right).
-    fn interval_forces(&self, r: &crate::response::IntervalResponse) -> (Value, Value, Vec<Value>) {
-        let pieces: Vec<Value> = r
-            .pieces
-            .iter()
-            .map(|p| {
-                let mut o = json!({
-                    "lambda_from": num(p.lambda_from),
-                    "lambda_to": num(p.lambda_to),
-                    "moments": self.member_moments(|k| p.moments[k]),
-                    "second_forces": self.member_second_forces(&self.solution.pieces[p.piece], None),
-                });
-                self.add_space_forces(&mut o, &self.solution.pieces[p.piece], None);
-                o
-            })
-            .collect();
-        let (moments, second_forces) = match pieces.as_slice() {
-            [one] => (one["moments"].clone(), one["second_forces"].clone()),
-            _ => (Value::Null, Value::Null),
-        };
-        (moments, second_forces, pieces)
+    /// The member forces of one piece of an interval but its bending
+    /// moments (`lambda_from`, `lambda_to`, `second_forces` and a space
+    /// scene's other forces): the `moments` are written straight from the
+    /// response beside them ([`WithEntry`], [`MemberMoments`]), not built.
+    fn piece_forces(&self, p: &crate::response::MomentPiece) -> Map<String, Value> {
+        let piece = &self.solution.pieces[p.piece];
+        let mut o = json!({
+            "lambda_from": num(p.lambda_from),
+            "lambda_to": num(p.lambda_to),
+            "second_forces": self.member_second_forces(piece, None),
+        });
+        self.add_space_forces(&mut o, piece, None);
+        match o {
+            Value::Object(m) => m,
+            _ => Map::new(),
+        }
     }
 
     /// The `moments_at_breakpoints` selected by `diagram_sel`, built one at a
     /// time as they are written.
     fn diagrams_part(&self, diagram_sel: Vec<usize>) -> Part<'_> {
         let diagram_sel = std::rc::Rc::new(diagram_sel);
-        Part::seq(move || {
+        Part::Diagrams(Box::new(move || {
             let diagram_sel = diagram_sel.clone();
-            self.response
-                .moments_at_breakpoints
-                .iter()
-                .zip(self.reading.intervals.iter().filter(|i| !i.rigid))
-                .enumerate()
-                .filter(move |(k, _)| diagram_sel.binary_search(k).is_ok())
-                .map(|(_, x)| x)
-                .map(|(d, iv)| {
-                    let piece = &self.solution.pieces[iv.piece_at(d.lambda)];
-                    let mut o = json!({"lambda": num(d.lambda), "members": self.member_moments(|k| d.moments[k]), "second_forces": self.member_second_forces(piece, Some(d.lambda))});
-                    self.add_space_forces(&mut o, piece, Some((d.lambda, &d.moments)));
-                    o
-                })
-        })
-    }
-
-    /// The `nodes` of the time response: displacement and velocity series
-    /// of the nodes `node_sel`.
-    fn nodes_json(&self, node_sel: &[usize]) -> Map<String, Value> {
-        let fr = &self.scene.frame;
-        let t = &self.response.time;
-        let mut nodes = Map::new();
-        for &i in node_sel {
-            let n = &fr.nodes[i];
-            let slot = self.response.slot(i).unwrap_or(i);
-            let series = |v: &Vec<Vec<[f64; 6]>>| {
-                let mut o = Map::new();
-                for c in fr.model.components() {
-                    o.insert(
-                        c.as_str().into(),
-                        json!(v.iter().map(|row| row[slot][c.index()]).collect::<Vec<_>>()),
-                    );
-                }
-                Value::Object(o)
-            };
-            nodes.insert(
-                n.id.clone(),
-                json!({"displacement": series(&t.displacement), "velocity": series(&t.velocity)}),
-            );
-        }
-        nodes
+            Box::new(
+                self.response
+                    .moments_at_breakpoints
+                    .iter()
+                    .zip(self.reading.intervals.iter().filter(|i| !i.rigid))
+                    .enumerate()
+                    .filter(move |(k, _)| diagram_sel.binary_search(k).is_ok())
+                    .map(|(_, x)| x)
+                    .map(|(d, iv)| {
+                        let piece = &self.solution.pieces[iv.piece_at(d.lambda)];
+                        let mut o = json!({"lambda": num(d.lambda), "second_forces": self.member_second_forces(piece, Some(d.lambda))});
+                        self.add_space_forces(&mut o, piece, Some((d.lambda, &d.moments)));
+                        let values = match o {
+                            Value::Object(m) => m,
+                            _ => Map::new(),
+                        };
+                        // `members` written straight from the diagram
+                        WithEntry {
+                            values,
+                            key: "members",
+                            extra: MemberMoments {
+                                frame: &self.scene.frame,
+                                value: Box::new(move |k: usize| d.moments[k])
+                                    as Box<dyn Fn(usize) -> f64 + '_>,
+                            },
+                        }
+                    }),
+            )
+        }))
     }
 
     /// `Err` if the selection asks for what a large scene's analysis did not
@@ -458,24 +436,25 @@ impl Analysis {
     }
 
     /// Per member: `from`, `to` and `along` (`[s, value]` at every element end).
+    /// (As a value: what [`MemberMoments`] writes.)
     fn member_moments<V: serde::Serialize + Copy>(&self, value: impl Fn(usize) -> V) -> Value {
-        let fr = &self.scene.frame;
-        let mut out = Map::new();
-        for (mi, m) in fr.members.iter().enumerate() {
-            let mut along = Vec::new();
-            let mut s = 0.0;
-            for e in m.elements.clone() {
-                along.push(json!([s, value(2 * e)]));
-                s += fr.elements[e].length;
-                along.push(json!([s, value(2 * e + 1)]));
-            }
-            let _ = mi;
-            out.insert(
-                m.id.clone(),
-                json!({"from": value(2 * m.elements.start), "to": value(2 * m.elements.end - 1), "along": along}),
-            );
+        serde_json::to_value(MemberMoments {
+            frame: &self.scene.frame,
+            value,
+        })
+        .unwrap_or(Value::Null)
+    }
+
+    /// The per-member moments of `values` (one per section), written
+    /// directly ([`MemberMoments`]).
+    fn moments_by_member<'s, V: serde::Serialize + Copy>(
+        &'s self,
+        values: &'s [V],
+    ) -> MemberMoments<'s, impl Fn(usize) -> V + 's> {
+        MemberMoments {
+            frame: &self.scene.frame,
+            value: move |k: usize| values[k],
         }
-        Value::Object(out)
     }
 
     /// A general space scene's other section forces, added to a moment
@@ -622,6 +601,193 @@ enum Part<'a> {
     Value(Value),
     Seq(Box<dyn Fn() -> Box<dyn Iterator<Item = Value> + 'a> + 'a>),
     Intervals(Box<IntervalIter<'a>>),
+    Diagrams(Box<DiagramIter<'a>>),
+    Response(ResponsePart<'a>),
+}
+
+/// What makes the iterator of the `moments_at_breakpoints` part.
+type DiagramIter<'a> = dyn Fn() -> Box<dyn Iterator<Item = Diagram<'a>> + 'a> + 'a;
+
+/// One entry of `moments_at_breakpoints`: its values but the moments,
+/// and the moments written directly.
+type Diagram<'a> = WithEntry<Map<String, Value>, MemberMoments<'a, Box<dyn Fn(usize) -> f64 + 'a>>>;
+
+/// An object: the entries of `values` and `key: extra`, written in a
+/// `Map`'s order (keys sorted; an entry of `values` under `key` is left
+/// out), as the object holding all of them as values would be written,
+/// without building `extra` as a value.
+struct WithEntry<M, X> {
+    values: M,
+    key: &'static str,
+    extra: X,
+}
+
+impl<M: std::borrow::Borrow<Map<String, Value>>, X: serde::Serialize> serde::Serialize
+    for WithEntry<M, X>
+{
+    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        use serde::ser::SerializeMap;
+        let values = self.values.borrow();
+        let len = values.len() + usize::from(!values.contains_key(self.key));
+        let mut m = s.serialize_map(Some(len))?;
+        let mut written = false;
+        for (k, v) in values {
+            if !written && k.as_str() >= self.key {
+                m.serialize_entry(self.key, &self.extra)?;
+                written = true;
+            }
+            if k != self.key {
+                m.serialize_entry(k, v)?;
+            }
+        }
+        if !written {
+            m.serialize_entry(self.key, &self.extra)?;
+        }
+        m.end()
+    }
+}
+
+/// Per member (by id, in a `Map`'s order): `from`, `to` and `along`
+/// (`[s, value]` at every element end), `value` per section; written as
+/// the value [`Analysis::member_moments`] builds, without building it (a
+/// 1000-element member is 2000 small arrays).
+struct MemberMoments<'f, F> {
+    frame: &'f crate::model::Frame,
+    value: F,
+}
+
+impl<V: serde::Serialize, F: Fn(usize) -> V> serde::Serialize for MemberMoments<'_, F> {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        use serde::ser::{SerializeMap, SerializeSeq};
+        let fr = self.frame;
+        let value = &self.value;
+        // sorted by id; of equal ids the last member (a map keeps the last
+        // insert), the members being in scene order
+        let mut order: Vec<usize> = (0..fr.members.len()).collect();
+        order.sort_by(|&a, &b| fr.members[a].id.cmp(&fr.members[b].id));
+        let order: Vec<usize> = order
+            .iter()
+            .enumerate()
+            .filter(|&(i, &k)| {
+                order
+                    .get(i + 1)
+                    .is_none_or(|&n| fr.members[n].id != fr.members[k].id)
+            })
+            .map(|(_, &k)| k)
+            .collect();
+        struct Along<'f, F>(&'f crate::model::Frame, std::ops::Range<usize>, &'f F);
+        impl<V: serde::Serialize, F: Fn(usize) -> V> serde::Serialize for Along<'_, F> {
+            fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+                let (fr, value) = (self.0, self.2);
+                let mut seq = s.serialize_seq(Some(2 * self.1.len()))?;
+                let mut at = 0.0;
+                for e in self.1.clone() {
+                    seq.serialize_element(&(at, value(2 * e)))?;
+                    at += fr.elements[e].length;
+                    seq.serialize_element(&(at, value(2 * e + 1)))?;
+                }
+                seq.end()
+            }
+        }
+        struct Member<'f, F>(&'f crate::model::Frame, std::ops::Range<usize>, &'f F);
+        impl<V: serde::Serialize, F: Fn(usize) -> V> serde::Serialize for Member<'_, F> {
+            fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+                let (els, value) = (&self.1, self.2);
+                let mut m = s.serialize_map(Some(3))?;
+                m.serialize_entry("along", &Along(self.0, els.clone(), value))?;
+                m.serialize_entry("from", &value(2 * els.start))?;
+                m.serialize_entry("to", &value(2 * els.end - 1))?;
+                m.end()
+            }
+        }
+        let mut m = s.serialize_map(Some(order.len()))?;
+        for k in order {
+            let member = &fr.members[k];
+            m.serialize_entry(&member.id, &Member(fr, member.elements.clone(), value))?;
+        }
+        m.end()
+    }
+}
+
+/// The `response` of the JSON report (keys in a `Map`'s order), its
+/// series written straight from the time response.
+struct ResponsePart<'a> {
+    analysis: &'a Analysis,
+    nodes: Vec<usize>,
+}
+
+impl serde::Serialize for ResponsePart<'_> {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        use serde::ser::SerializeMap;
+        let a = self.analysis;
+        let fr = &a.scene.frame;
+        let t = &a.response.time;
+        // the nodes by id (a map's order; a node named twice once)
+        let mut nodes: Vec<(&str, usize)> = self
+            .nodes
+            .iter()
+            .map(|&i| (fr.nodes[i].id.as_str(), a.response.slot(i).unwrap_or(i)))
+            .collect();
+        nodes.sort_by(|x, y| x.0.cmp(y.0));
+        nodes.dedup_by(|x, y| x.0 == y.0);
+        let mut comps: Vec<(&'static str, usize)> = fr
+            .model
+            .components()
+            .iter()
+            .map(|c| (c.as_str(), c.index()))
+            .collect();
+        comps.sort();
+        comps.dedup_by(|x, y| x.0 == y.0);
+        struct Series<'s>(&'s [Vec<[f64; 6]>], usize, &'s [(&'static str, usize)]);
+        impl serde::Serialize for Series<'_> {
+            fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+                struct Column<'c>(&'c [Vec<[f64; 6]>], usize, usize);
+                impl serde::Serialize for Column<'_> {
+                    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+                        s.collect_seq(self.0.iter().map(|row| row[self.1][self.2]))
+                    }
+                }
+                let mut m = s.serialize_map(Some(self.2.len()))?;
+                for &(name, c) in self.2 {
+                    m.serialize_entry(name, &Column(self.0, self.1, c))?;
+                }
+                m.end()
+            }
+        }
+        struct Node<'s>(&'s TimeResponse, usize, &'s [(&'static str, usize)]);
+        impl serde::Serialize for Node<'_> {
+            fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+                let mut m = s.serialize_map(Some(2))?;
+                m.serialize_entry(
+                    "displacement",
+                    &Series(&self.0.displacement, self.1, self.2),
+                )?;
+                m.serialize_entry("velocity", &Series(&self.0.velocity, self.1, self.2))?;
+                m.end()
+            }
+        }
+        struct Nodes<'s>(
+            &'s TimeResponse,
+            &'s [(&'s str, usize)],
+            &'s [(&'static str, usize)],
+        );
+        impl serde::Serialize for Nodes<'_> {
+            fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+                let mut m = s.serialize_map(Some(self.1.len()))?;
+                for &(id, slot) in self.1 {
+                    m.serialize_entry(id, &Node(self.0, slot, self.2))?;
+                }
+                m.end()
+            }
+        }
+        let mut m = s.serialize_map(Some(5))?;
+        m.serialize_entry("history", &t.history.describe())?;
+        m.serialize_entry("lambda", &t.lambda)?;
+        m.serialize_entry("method", t.method)?;
+        m.serialize_entry("nodes", &Nodes(t, &nodes, &comps))?;
+        m.serialize_entry("times", &t.times)?;
+        m.end()
+    }
 }
 
 /// What makes the iterator of the `intervals` part.
@@ -697,20 +863,38 @@ impl serde::Serialize for IntervalEntry<'_> {
             Bool(bool),
             Acc(&'f IntervalEntry<'a>),
             Residual(&'f crate::response::IntervalResponse),
-            Pieces(&'f [Value]),
+            Moments(&'f [crate::response::Affine]),
+            Pieces(&'f [Map<String, Value>]),
         }
-        let (moments, second_forces, pieces) = if self.with_moments {
-            self.analysis.interval_forces(self.r)
+        // the member forces piece by piece (`pieces`), and at the
+        // interval's level (`moments`, `second_forces`) only where one
+        // piece holds the whole interval (null where the path pivots
+        // inside it: no one affine field is right); the moments written
+        // straight from the response
+        let pieces: Vec<Map<String, Value>> = if self.with_moments {
+            self.r
+                .pieces
+                .iter()
+                .map(|p| self.analysis.piece_forces(p))
+                .collect()
         } else {
-            (Value::Null, Value::Null, Vec::new())
+            Vec::new()
+        };
+        let null = Value::Null;
+        let (moments, second_forces) = match (pieces.as_slice(), self.r.pieces.as_slice()) {
+            ([one], [p]) => (
+                Field::Moments(&p.moments[..]),
+                Field::Value(one.get("second_forces").unwrap_or(&null)),
+            ),
+            _ => (Field::Value(&null), Field::Value(&null)),
         };
         let mut fields: Vec<(&str, Field<'_, '_>)> = vec![
             ("lambda_from", Field::Num(self.iv.lambda_from)),
             ("lambda_to", Field::Num(self.iv.lambda_to)),
             ("rigid", Field::Bool(self.iv.rigid)),
             ("accelerations", Field::Acc(self)),
-            ("moments", Field::Value(&moments)),
-            ("second_forces", Field::Value(&second_forces)),
+            ("moments", moments),
+            ("second_forces", second_forces),
             ("pieces", Field::Pieces(&pieces)),
             ("residual", Field::Residual(self.r)),
         ];
@@ -723,7 +907,22 @@ impl serde::Serialize for IntervalEntry<'_> {
                 Field::Num(x) => m.serialize_entry(k, &Num(*x))?,
                 Field::Bool(b) => m.serialize_entry(k, b)?,
                 Field::Acc(e) => m.serialize_entry(k, &Accelerations(e))?,
-                Field::Pieces(p) => m.serialize_entry(k, p)?,
+                Field::Moments(v) => m.serialize_entry(k, &self.analysis.moments_by_member(v))?,
+                Field::Pieces(p) => {
+                    struct Pieces<'p>(&'p [Map<String, Value>], &'p IntervalEntry<'p>);
+                    impl serde::Serialize for Pieces<'_> {
+                        fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+                            s.collect_seq(self.0.iter().zip(&self.1.r.pieces).map(|(values, p)| {
+                                WithEntry {
+                                    values,
+                                    key: "moments",
+                                    extra: self.1.analysis.moments_by_member(&p.moments[..]),
+                                }
+                            }))
+                        }
+                    }
+                    m.serialize_entry(k, &Pieces(p, self))?
+                }
                 Field::Residual(r) => {
                     struct Res<'r>(&'r plcp::Residual);
                     impl serde::Serialize for Res<'_> {
@@ -755,6 +954,8 @@ impl serde::Serialize for Part<'_> {
             Part::Value(v) => v.serialize(s),
             Part::Seq(f) => s.collect_seq(f()),
             Part::Intervals(f) => s.collect_seq(f()),
+            Part::Diagrams(f) => s.collect_seq(f()),
+            Part::Response(r) => r.serialize(s),
         }
     }
 }
@@ -790,5 +991,105 @@ impl serde::Serialize for JsonReport<'_> {
             map.serialize_entry(k, v)?;
         }
         map.end()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::model::{Frame, Scene};
+
+    /// The moment distribution as the report built it before
+    /// [`MemberMoments`] (a `Value` per member, per element end).
+    fn built<V: serde::Serialize + Copy>(fr: &Frame, value: impl Fn(usize) -> V) -> Value {
+        let mut out = Map::new();
+        for m in &fr.members {
+            let mut along = Vec::new();
+            let mut s = 0.0;
+            for e in m.elements.clone() {
+                along.push(json!([s, value(2 * e)]));
+                s += fr.elements[e].length;
+                along.push(json!([s, value(2 * e + 1)]));
+            }
+            out.insert(
+                m.id.clone(),
+                json!({"from": value(2 * m.elements.start), "to": value(2 * m.elements.end - 1), "along": along}),
+            );
+        }
+        Value::Object(out)
+    }
+
+    /// Values per section with the cases a distribution meets: signs, a
+    /// negative zero, a NaN and infinities (written as null).
+    fn value(k: usize) -> f64 {
+        match k % 7 {
+            0 => -0.0,
+            3 if k % 2 == 1 => f64::NAN,
+            5 if k % 3 == 0 => f64::INFINITY,
+            5 => f64::NEG_INFINITY,
+            _ => (k as f64) * 0.37 - 1.0 / (1.0 + k as f64),
+        }
+    }
+
+    /// [`MemberMoments`] writes the bytes of the values it replaces, compact
+    /// and pretty, for the members of every scene (ids sorted apart from
+    /// scene order in the portals and frames), with plain and affine
+    /// values; [`WithEntry`] writes the object holding the same entries.
+    #[test]
+    fn member_moments_write_the_values_they_replace() {
+        let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../scenes");
+        let mut checked = 0;
+        for dir in [root.clone(), root.join("pipe-whip"), root.join("stiff")] {
+            for e in std::fs::read_dir(dir).unwrap() {
+                let path = e.unwrap().path();
+                if path.extension().is_none_or(|x| x != "toml") {
+                    continue;
+                }
+                let fr = Scene::from_file(&path).unwrap().frame;
+                let name = path.display().to_string();
+                let plain = MemberMoments { frame: &fr, value };
+                let affine = MemberMoments {
+                    frame: &fr,
+                    value: |k: usize| [value(k), value(k + 3)],
+                };
+                let (bp, ba) = (built(&fr, value), built(&fr, |k| [value(k), value(k + 3)]));
+                for (ours, theirs) in [
+                    (serde_json::to_string(&plain), serde_json::to_string(&bp)),
+                    (serde_json::to_string(&affine), serde_json::to_string(&ba)),
+                    (
+                        serde_json::to_string_pretty(&plain),
+                        serde_json::to_string_pretty(&bp),
+                    ),
+                    (
+                        serde_json::to_string_pretty(&affine),
+                        serde_json::to_string_pretty(&ba),
+                    ),
+                ] {
+                    assert_eq!(ours.unwrap(), theirs.unwrap(), "{name}");
+                }
+                assert_eq!(serde_json::to_value(&plain).unwrap(), bp, "{name}");
+                // an object of values and the moments under a key between,
+                // before and after theirs
+                for key in ["members", "a", "zz", "lambda"] {
+                    let mut values = Map::new();
+                    values.insert("lambda".into(), json!(1.5));
+                    values.insert("second_forces".into(), json!({}));
+                    let mut whole = values.clone();
+                    whole.insert(key.into(), bp.clone());
+                    let ours = WithEntry {
+                        values: &values,
+                        key,
+                        extra: MemberMoments { frame: &fr, value },
+                    };
+                    assert_eq!(
+                        serde_json::to_string_pretty(&ours).unwrap(),
+                        serde_json::to_string_pretty(&Value::Object(whole)).unwrap(),
+                        "{name} {key}"
+                    );
+                }
+                checked += 1;
+            }
+        }
+        assert!(checked >= 20, "{checked}");
     }
 }

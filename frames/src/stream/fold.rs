@@ -16,8 +16,8 @@ use std::collections::HashMap;
 pub(super) struct Plan {
     /// The kept nodes, ascending.
     pub(super) kept: Vec<usize>,
-    /// Per coordinate of the system, its kept node's slot.
-    pub(super) slot_of: Vec<Option<usize>>,
+    /// The coordinates of the kept nodes ([`kept_coordinates`]).
+    pub(super) kept_coords: Vec<(usize, usize, usize)>,
     /// Per piece, the interval it starts (whose accelerations it gives).
     pub(super) first_of: Vec<Option<usize>>,
     /// Per piece, the selected intervals' moment pieces it gives.
@@ -94,14 +94,10 @@ impl Plan {
             .chain(diagram_of.keys().copied())
             .max()
             .unwrap_or(0);
-        let slot_of: Vec<Option<usize>> = system
-            .coordinates
-            .iter()
-            .map(|c| kept.binary_search(&c.node).ok())
-            .collect();
+        let kept_coords = kept_coordinates(system, &kept);
         Plan {
             kept,
-            slot_of,
+            kept_coords,
             first_of,
             span_of,
             diagram_of,
@@ -110,6 +106,24 @@ impl Plan {
             positions: moment_positions(system),
         }
     }
+}
+
+/// The coordinates of the nodes `kept` (ascending): per coordinate of
+/// `system` whose node is kept, (the coordinate, the node's slot in `kept`,
+/// the component's index), in the coordinates' order. What the kept nodes'
+/// rows read of a vector of the coordinates, found once (not a pass over
+/// every coordinate per row).
+pub(super) fn kept_coordinates(system: &System, kept: &[usize]) -> Vec<(usize, usize, usize)> {
+    system
+        .coordinates
+        .iter()
+        .enumerate()
+        .filter_map(|(j, c)| {
+            kept.binary_search(&c.node)
+                .ok()
+                .map(|s| (j, s, c.component.index()))
+        })
+        .collect()
 }
 
 /// The response's skeleton: per interval its range, its moment pieces'
@@ -231,10 +245,8 @@ impl<'a> Fold<'a> {
     /// The kept nodes' rows of a coordinate vector.
     fn rows(&self, q: &[f64]) -> Vec<[f64; 6]> {
         let mut out = vec![[0.0; 6]; self.cx.plan.kept.len()];
-        for (j, c) in self.cx.system.coordinates.iter().enumerate() {
-            if let Some(s) = self.cx.plan.slot_of[j] {
-                out[s][c.component.index()] = q.get(j).copied().unwrap_or(0.0);
-            }
+        for &(j, s, c) in &self.cx.plan.kept_coords {
+            out[s][c] = q.get(j).copied().unwrap_or(0.0);
         }
         out
     }
@@ -287,10 +299,8 @@ impl<'a> Fold<'a> {
         let iv = &cx.reading.intervals[i];
         let (base, slope) = affine_accelerations(cx.system, iv, p);
         let mut acc = vec![[[0.0; 2]; 6]; cx.plan.kept.len()];
-        for (j, c) in cx.system.coordinates.iter().enumerate() {
-            if let Some(s) = cx.plan.slot_of[j] {
-                acc[s][c.component.index()] = [base[j], slope[j]];
-            }
+        for &(j, s, c) in &cx.plan.kept_coords {
+            acc[s][c] = [base[j], slope[j]];
         }
         self.intervals[i].accelerations = acc;
         // the windows of this interval, in order

@@ -406,15 +406,17 @@ fn first_pass(
     let mut residuals: Vec<Option<(Residual, Residual)>> = Vec::new();
     let solution = solve::trace_pieces(system, &options.solve, options.escalate, watch, |k, p| {
         reader.push(k, &p);
-        if let Some(single) = single.as_deref_mut() {
-            single.piece(k, &p, &reader);
-        }
         ranges.push((p.lambda_from, p.lambda_to));
         residuals.push(
             problem
                 .as_ref()
                 .map(|problem| residuals_of_piece(problem, &p)),
         );
+        // last: the one-pass route keeps the piece itself where it needs it
+        // (moved, not copied)
+        if let Some(single) = single.as_deref_mut() {
+            single.piece(k, p, &reader);
+        }
         Control::Continue
     })?;
     Ok(FirstPass {

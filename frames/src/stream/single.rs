@@ -41,7 +41,9 @@ pub(super) struct Single<'a> {
     system: &'a System,
     history: &'a History,
     kept: Vec<usize>,
-    slot_of: Vec<Option<usize>>,
+    /// The coordinates of the kept nodes: (coordinate, the node's slot,
+    /// the component's index), in the coordinates' order.
+    kept_coords: Vec<(usize, usize, usize)>,
     targets: Targets,
     /// The resolved sampled values (once the first breakpoint is read).
     values: Option<Vec<f64>>,
@@ -123,11 +125,7 @@ impl<'a> Single<'a> {
         for t in history.knots(t_end) {
             add(t, &mut knots);
         }
-        let slot_of = system
-            .coordinates
-            .iter()
-            .map(|c| kept.binary_search(&c.node).ok())
-            .collect();
+        let kept_coords = super::fold::kept_coordinates(system, &kept);
         let values = match &targets {
             Targets::Fixed(v) => Some(v.clone()),
             Targets::FromFirst { .. } => None,
@@ -137,7 +135,7 @@ impl<'a> Single<'a> {
             system,
             history,
             kept,
-            slot_of,
+            kept_coords,
             targets,
             values,
             t_end,
@@ -170,10 +168,8 @@ impl<'a> Single<'a> {
     /// The kept nodes' rows of a coordinate vector.
     fn node_rows(&self, q: &[f64]) -> Vec<[f64; 6]> {
         let mut out = vec![[0.0; 6]; self.kept.len()];
-        for (j, c) in self.system.coordinates.iter().enumerate() {
-            if let Some(s) = self.slot_of[j] {
-                out[s][c.component.index()] = q[j];
-            }
+        for &(j, s, c) in &self.kept_coords {
+            out[s][c] = q[j];
         }
         out
     }
@@ -217,10 +213,8 @@ impl<'a> Single<'a> {
                 }
             };
             let mut rows = vec![[[0.0; 2]; 6]; self.kept.len()];
-            for (j, c) in self.system.coordinates.iter().enumerate() {
-                if let Some(s) = self.slot_of[j] {
-                    rows[s][c.component.index()] = [acc.0[j], acc.1[j]];
-                }
+            for &(j, s, c) in &self.kept_coords {
+                rows[s][c] = [acc.0[j], acc.1[j]];
             }
             self.acc_rows.push(rows);
             self.accel.insert(i, acc);
@@ -290,12 +284,12 @@ impl<'a> Single<'a> {
     }
 
     /// Piece `k`, just read by `reader`.
-    pub(super) fn piece(&mut self, k: usize, p: &Piece, reader: &hinge::Reader<'_>) {
+    pub(super) fn piece(&mut self, k: usize, p: Piece, reader: &hinge::Reader<'_>) {
         if self.failed {
             return;
         }
         let intervals = reader.intervals();
-        self.read_new(Some((k, p)), intervals, reader.breakpoints());
+        self.read_new(Some((k, &p)), intervals, reader.breakpoints());
         if self.gc {
             let keep: std::collections::HashSet<usize> = self
                 .wanted
@@ -312,7 +306,7 @@ impl<'a> Single<'a> {
                     .last()
                     .is_some_and(|sp| sp.piece == k)
             {
-                self.retained.insert(k, p.clone());
+                self.retained.insert(k, p);
             }
         }
         // every later knot is at or above the frontier's time
