@@ -828,7 +828,7 @@ mod raw_tests {
     /// Past the chunk size (flushes inside a column and between segments).
     #[test]
     fn long_columns_flush_in_place() {
-        let n = 9000;
+        let n = 40_000;
         let seg = |k: usize| Segment::<f64> {
             lambda_from: k as f64,
             lambda_to: k as f64 + 0.5,
