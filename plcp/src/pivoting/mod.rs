@@ -191,6 +191,9 @@ pub(crate) struct Engine<'a, T: Scalar> {
     tie_alarm: RefCell<Option<String>>,
     /// Refactorise after the next pivot (one on an entry below the noise).
     refactor_after: Cell<bool>,
+    /// Recompute the values from the updated factor after the next pivot
+    /// (a separated near tie on a sparse basis, pivot entry not small).
+    values_after: Cell<bool>,
 }
 
 /// The two accumulators of [`Engine::wide_residual_pair`] (values, column).
@@ -318,6 +321,7 @@ impl<'a, T: Scalar> Engine<'a, T> {
             near_ties: Cell::new((0, 0)),
             tie_alarm: RefCell::new(None),
             refactor_after: Cell::new(false),
+            values_after: Cell::new(false),
         };
         for (r, v) in basis.iter().enumerate() {
             let k = e.var_index(*v);
