@@ -69,6 +69,16 @@ impl<'a, T: Scalar> InverseRows<'a, T> {
         }
     }
 
+    /// Entry `k` (a system row) of row `t` as computed (noise included).
+    #[inline]
+    pub(crate) fn get_raw(&self, t: usize, k: usize) -> T {
+        let at = match self.perm {
+            Some(p) => p[k],
+            None => k,
+        };
+        self.data[t * self.dim + at]
+    }
+
     /// Entry `k` (a system row) of row `t`, its noise read as zero.
     #[inline]
     pub(crate) fn get(&self, t: usize, k: usize) -> T {

@@ -603,14 +603,29 @@ impl<T: Scalar> Engine<'_, T> {
         }
         let solve_eps = (1.0 + self.cond) * eps;
         let l_row = self.row_of(Var::Lambda);
+        // the rows of B^{-1} at once where the factorisation hands them over
+        // (a sparse LU: one sweep for two rows), else one transpose solve each
+        let batch = self.factor.inverse_rows(rows);
         rows.iter()
-            .map(|&row| {
-                let mut e = Col::<T>::zeros(dim);
-                e[row] = T::one();
-                let inv = self.factor.solve_transpose(&e);
+            .enumerate()
+            .map(|(t, &row)| {
+                let inv = match &batch {
+                    Some(_) => None,
+                    None => {
+                        let mut e = Col::<T>::zeros(dim);
+                        e[row] = T::one();
+                        Some(self.factor.solve_transpose(&e))
+                    }
+                };
                 let (mut bx, mut bc) = (0.0f64, 0.0f64);
                 for i in 0..dim {
-                    let w = inv[i].to_f64().abs();
+                    let w = match (&batch, &inv) {
+                        (Some(b), _) => b.get_raw(t, i),
+                        (None, Some(inv)) => inv[i],
+                        (None, None) => unreachable!("one of the two"),
+                    }
+                    .to_f64()
+                    .abs();
                     if w == 0.0 {
                         continue;
                     }
