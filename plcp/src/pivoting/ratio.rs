@@ -107,15 +107,39 @@ impl<'a, T: Scalar> Engine<'a, T> {
         if colmax == T::zero() {
             return None;
         }
+        // the rows as slices (the same operations as faer's checked
+        // indexing, without its checks: this test runs at every step of a
+        // trace, the MPC loop's most frequent pass over `dim`)
+        let dim = self.dim;
+        let (cs, xs, basis) = (
+            &col_slice(col)[..dim],
+            &col_slice(&self.x)[..dim],
+            &self.basis[..dim],
+        );
+        // (artificial rows, below, keep the whole column's scale)
+        let ptol_all = self.noise * colmax;
+        // artificial variables are fixed at zero: any move blocks them;
+        // in the same pass as the z/w rows' largest entry (each the same
+        // fold in the same order as a pass of its own)
+        let mut compmax = T::zero();
+        let mut art: Option<usize> = None;
+        for (r, (&c, v)) in cs.iter().zip(basis).enumerate() {
+            match v {
+                Var::W(_) | Var::Z(_) => compmax = compmax.max(c.abs()),
+                Var::Artificial(_)
+                    if c.abs() > ptol_all && art.is_none_or(|a| c.abs() > cs[a].abs()) =>
+                {
+                    art = Some(r);
+                }
+                _ => {}
+            }
+        }
         // the pivot tolerance of the candidates is relative to the entries of
         // the sign-constrained rows (z, w): a basic L's entry is the rate of
         // the parameter and a free variable's is in its own units; where they
         // are large per unit of the driver (L at 1e9, u at 8e4 in the stiffest
         // frame, issue 14 defect 5) they made an accurate entry of 1e-3 at the
         // blocking row look like rounding, and the path ran past the event
-        let compmax = (0..self.dim)
-            .filter(|&r| is_comp(self.basis[r]))
-            .fold(T::zero(), |a, r| a.max(col[r].abs()));
         // but never below the rounding of the whole column (dim roundings of
         // its largest entry): where every z/w entry is rounding (a ray), the
         // largest of them must not become a block (fx128 found one at
@@ -130,32 +154,18 @@ impl<'a, T: Scalar> Engine<'a, T> {
         } else {
             self.noise * colmax
         };
-        // (artificial rows, below, keep the whole column's scale)
-        let ptol_all = self.noise * colmax;
-        // artificial variables are fixed at zero: any move blocks them
-        let mut art: Option<usize> = None;
-        for r in 0..self.dim {
-            if matches!(self.basis[r], Var::Artificial(_))
-                && col[r].abs() > ptol_all
-                && art.is_none_or(|a| col[r].abs() > col[a].abs())
-            {
-                art = Some(r);
-            }
-        }
         if let Some(r) = art {
             return Some((r, T::zero()));
         }
         let xnorm = self.xscale();
         let mut best: Option<T> = None;
-        // the candidates (rows and ratios), recomputed in the second pass
+        // the candidates (rows and ratios), recomputed in the tie pass
         // rather than collected: no allocation unless several rows tie
-        let ratio = |r: usize| {
-            (is_comp(self.basis[r]) && col[r] > ptol && !excluded.contains(&r))
-                .then(|| self.x[r].max(T::zero()) / col[r])
-        };
+        let candidate = |r: usize, c: T, v: Var| is_comp(v) && c > ptol && !excluded.contains(&r);
         let mut first_cand = None;
-        for r in 0..self.dim {
-            if let Some(ratio) = ratio(r) {
+        for (r, ((&c, &x), &v)) in cs.iter().zip(xs).zip(basis).enumerate() {
+            if candidate(r, c, v) {
+                let ratio = x.max(T::zero()) / c;
                 first_cand.get_or_insert(r);
                 best = Some(best.map_or(ratio, |b| b.min(ratio)));
             }
@@ -176,12 +186,16 @@ impl<'a, T: Scalar> Engine<'a, T> {
             }
         }
         let tmin = best?;
-        let is_tied = |r: usize| {
-            ratio(r).is_some_and(|t| t - tmin <= self.tie_tol * (tmin.abs() + xnorm / col[r]))
+        let tied_at = |r: usize, c: T, x: T, v: Var| {
+            candidate(r, c, v) && {
+                let t = x.max(T::zero()) / c;
+                t - tmin <= self.tie_tol * (tmin.abs() + xnorm / c)
+            }
         };
+        let is_tied = |r: usize| tied_at(r, cs[r], xs[r], basis[r]);
         let (mut n_tied, mut first) = (0usize, None);
-        for r in 0..self.dim {
-            if is_tied(r) {
+        for (r, ((&c, &x), &v)) in cs.iter().zip(xs).zip(basis).enumerate() {
+            if tied_at(r, c, x, v) {
                 n_tied += 1;
                 first.get_or_insert(r);
             }
