@@ -32,13 +32,15 @@ impl<'a, T: Scalar> Engine<'a, T> {
     /// where no regular row blocks, entries below the pivot tolerance are
     /// read for a block before it ([`Self::read_small_entries`]).
     pub(super) fn ratio_test(&self, col: &Col<T>, v: Var, cap: Option<T>) -> Option<(usize, T)> {
-        let small = T::eps().sqrt() * col_max_abs(col);
+        // (the column's largest entry once for the test and its retries)
+        let colmax = col_max_abs(col);
+        let small = T::eps().sqrt() * colmax;
         // (set again below when a small entry blocks; a test whose block
         // was not pivoted on, L_max first, leaves nothing behind)
         self.refactor_after.set(false);
         let mut excluded: Vec<usize> = Vec::new();
         loop {
-            let (r, theta) = self.ratio_test_excluding(col, v, cap, &excluded)?;
+            let (r, theta) = self.ratio_test_excluding(col, colmax, v, cap, &excluded)?;
             let entry = col[r].abs();
             // (a small entry that the refined column separates from zero:
             // read_small_entries, which marks its pivot for a refactorisation)
@@ -95,15 +97,16 @@ impl<'a, T: Scalar> Engine<'a, T> {
         (0..self.dim).fold(T::zero(), |s, i| s + row[i].abs() * by[i])
     }
 
-    /// [`Self::ratio_test`] with the rows `excluded` no candidates.
+    /// [`Self::ratio_test`] with the rows `excluded` no candidates
+    /// (`colmax`: `col`'s largest absolute entry).
     fn ratio_test_excluding(
         &self,
         col: &Col<T>,
+        colmax: T,
         v: Var,
         cap: Option<T>,
         excluded: &[usize],
     ) -> Option<(usize, T)> {
-        let colmax = col_max_abs(col);
         if colmax == T::zero() {
             return None;
         }
