@@ -159,15 +159,16 @@ impl<'a, T: Scalar> Solver<'a, T> {
             precision: T::NAME,
             ..Info::default()
         };
-        let Some((mut eng, was_warm)) = self.engine_for(q, d, &mut info) else {
+        let Some(was_warm) = self.engine_for(q, d, &mut info) else {
             // the start failed: the whole path as one call reports how
             let (q, d) = (q.to_owned(), d.to_owned());
             let mut path = self.cold_path(&q, &d, lambda_max);
             path.info.solve_seconds = timer.elapsed().as_secs_f64();
             return Ok(path);
         };
+        let eng = self.engine.as_mut().expect("engine_for leaves the engine");
         let mut path = finish_path(
-            &mut eng,
+            eng,
             Recorder::new(),
             T::zero(),
             Some(lambda_max),
@@ -178,19 +179,22 @@ impl<'a, T: Scalar> Solver<'a, T> {
         self.measure(&mut path, q, d);
         // keep the engine where the path ended, as a complementary basis with
         // L nonbasic: the driver takes L's place (one pivot, no refactorisation)
-        if path.status == Status::Reached {
+        let eng = self.engine.as_mut().expect("engine_for leaves the engine");
+        let kept = path.status == Status::Reached && {
+            let worst = path.info.residual.worst();
             if let Some(driver) = eng.row_of(Var::Lambda).map(|l| {
                 path.final_basis
                     .as_ref()
                     .expect("a reached path has its end basis")[l]
             }) {
                 let theta = value_of(&path.end, driver);
-                if eng.settle(driver, theta).is_ok() {
-                    self.keep(eng, path.info.residual.worst());
-                }
+                eng.settle(driver, theta).is_ok() && keep(self.settings, eng, worst)
             } else {
-                self.keep(eng, path.info.residual.worst());
+                keep(self.settings, eng, worst)
             }
+        };
+        if !kept {
+            self.engine = None;
         }
         path.info.solve_seconds = timer.elapsed().as_secs_f64();
         Ok(path)
@@ -253,7 +257,7 @@ impl<'a, T: Scalar> Solver<'a, T> {
             };
         }
         let mut info = Info::default();
-        let Some((mut eng, was_warm)) = self.engine_for(q, d, &mut info) else {
+        let Some(was_warm) = self.engine_for(q, d, &mut info) else {
             let (qo, dout) = (q.to_owned(), d.to_owned());
             let path = self.cold_path(&qo, &dout, lambda_max);
             let last = &mut self.last;
@@ -267,13 +271,11 @@ impl<'a, T: Scalar> Solver<'a, T> {
             last.solve_seconds = timer.elapsed().as_secs_f64();
             return Ok(());
         };
+        // (the engine stays in place: moving it in and out of its `Option`
+        // copied the struct several times a step)
+        let eng = self.engine.as_mut().expect("engine_for leaves the engine");
         let start_pivots = eng.pivots;
-        let lean = finish_lean(
-            &mut eng,
-            &mut self.rec,
-            Some(lambda_max),
-            &mut self.last.end,
-        );
+        let lean = finish_lean(eng, &mut self.rec, Some(lambda_max), &mut self.last.end);
         let last = &mut self.last;
         last.status = lean.status;
         last.message = lean.message;
@@ -295,41 +297,18 @@ impl<'a, T: Scalar> Solver<'a, T> {
             );
             last.status = Status::IllConditioned;
         }
-        if last.status == Status::Reached {
-            match lean.reached {
+        let kept = last.status == Status::Reached
+            && match lean.reached {
                 Some((driver, theta)) if eng.row_of(Var::Lambda).is_some() => {
-                    if eng.settle(driver, theta).is_ok() {
-                        self.keep(eng, worst);
-                    }
+                    eng.settle(driver, theta).is_ok() && keep(self.settings, eng, worst)
                 }
-                _ => self.keep(eng, worst),
-            }
+                _ => keep(self.settings, eng, worst),
+            };
+        if !kept {
+            self.engine = None;
         }
         self.last.solve_seconds = timer.elapsed().as_secs_f64();
         Ok(())
-    }
-
-    /// Keeps the engine for the next call, with the drift control of the
-    /// loop read off the end residual `worst` just measured on the data
-    /// (measured growth, not a fixed count): at most [`VALUES_KEPT_EPS`]
-    /// `eps`, the next step starts from the basic values held (no solve,
-    /// `Engine::retarget`); at most [`FACTOR_KEPT_EPS`] `eps`, the pivots
-    /// of this call do not count toward the refactorisation period
-    /// (`Engine::defer_refactor`, up to a cap); above it the basis is
-    /// refactorised now, and kept only if that succeeds. (With an explicit
-    /// [`crate::Settings::refactor_period`] the user's period holds.)
-    fn keep(&mut self, mut eng: Engine<'a, T>, worst: f64) {
-        let eps = T::eps().to_f64();
-        eng.values_trusted = worst <= VALUES_KEPT_EPS * eps;
-        let clean = worst <= FACTOR_KEPT_EPS * eps;
-        if self.settings.refactor_period.is_none() {
-            if clean {
-                eng.defer_refactor();
-            } else if eng.refactor().is_err() {
-                return;
-            }
-        }
-        self.engine = Some(eng);
     }
 
     /// The entries of `q` and `d`: `n` each, finite.
@@ -365,28 +344,23 @@ impl<'a, T: Scalar> Solver<'a, T> {
         Ok(())
     }
 
-    /// The engine for data `q`, `d` at `L = 0`: where the last path ended if
-    /// that is a feasible start (`true`), else a cold start by Lemke's start
-    /// phase (`false`); `None` if the start failed.
-    fn engine_for(
-        &mut self,
-        q: ColRef<'_, T>,
-        d: ColRef<'_, T>,
-        info: &mut Info,
-    ) -> Option<(Engine<'a, T>, bool)> {
-        let warm = self
-            .engine
-            .take()
-            .and_then(|mut eng| match eng.retarget(q, d, T::zero()) {
-                None => Some(eng),
+    /// The engine for data `q`, `d` at `L = 0`, left in `self.engine`:
+    /// where the last path ended if that is a feasible start (`true`),
+    /// else a cold start by Lemke's start phase (`false`); `None` (and no
+    /// engine) if the start failed.
+    fn engine_for(&mut self, q: ColRef<'_, T>, d: ColRef<'_, T>, info: &mut Info) -> Option<bool> {
+        // (retargeted in place: the engine is not moved out of its `Option`)
+        if let Some(eng) = self.engine.as_mut() {
+            match eng.retarget(q, d, T::zero()) {
+                None => {
+                    info.warm_start = true;
+                    return Some(true);
+                }
                 Some(why) => {
                     info.warm_start_note = format!("the last basis not used: {why}");
-                    None
+                    self.engine = None;
                 }
-            });
-        if let Some(eng) = warm {
-            info.warm_start = true;
-            return Some((eng, true));
+            }
         }
         let n = self.m.nrows();
         let (q, d) = (q.to_owned(), d.to_owned());
@@ -403,7 +377,8 @@ impl<'a, T: Scalar> Solver<'a, T> {
         .ok()?;
         start_phase(&mut eng, &q, &d, T::zero(), self.settings.covering.as_ref()).ok()?;
         info.start_pivots = eng.pivots;
-        Some((eng, false))
+        self.engine = Some(eng);
+        Some(false)
     }
 
     /// The whole path as one call, after a failed start (it reports how).
@@ -431,6 +406,29 @@ impl<'a, T: Scalar> Solver<'a, T> {
         path.info.residual = crate::residual::residual_parts(self.m, q, d, 0, &path.end);
         crate::trace::guard_residual(path);
     }
+}
+
+/// Whether to keep the engine for the next call, with the drift control of the
+/// loop read off the end residual `worst` just measured on the data
+/// (measured growth, not a fixed count): at most [`VALUES_KEPT_EPS`]
+/// `eps`, the next step starts from the basic values held (no solve,
+/// `Engine::retarget`); at most [`FACTOR_KEPT_EPS`] `eps`, the pivots
+/// of this call do not count toward the refactorisation period
+/// (`Engine::defer_refactor`, up to a cap); above it the basis is
+/// refactorised now, and kept only if that succeeds. (With an explicit
+/// [`crate::Settings::refactor_period`] the user's period holds.)
+fn keep<T: Scalar>(settings: &Settings<T>, eng: &mut Engine<'_, T>, worst: f64) -> bool {
+    let eps = T::eps().to_f64();
+    eng.values_trusted = worst <= VALUES_KEPT_EPS * eps;
+    let clean = worst <= FACTOR_KEPT_EPS * eps;
+    if settings.refactor_period.is_none() {
+        if clean {
+            eng.defer_refactor();
+        } else if eng.refactor().is_err() {
+            return false;
+        }
+    }
+    true
 }
 
 /// Does the one-time work of a process that its first solve would

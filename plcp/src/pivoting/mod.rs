@@ -635,14 +635,17 @@ impl<'a, T: Scalar> Engine<'a, T> {
     /// The basic values, and `driver` at its value, written into zeroed
     /// `(z, w, u)`.
     fn scatter(&self, driver: Option<(Var, T)>, z: &mut Col<T>, w: &mut Col<T>, u: &mut Col<T>) {
+        // over slices (the same stores without faer's checked indexing: the
+        // end point of every MPC step)
+        let (z, w, u) = (col_slice_mut(z), col_slice_mut(w), col_slice_mut(u));
         let mut set = |v: Var, val: T| match v {
             Var::W(i) => w[i] = val,
             Var::Z(i) => z[i] = val,
             Var::U(j) => u[j] = val,
             _ => {}
         };
-        for (r, v) in self.basis.iter().enumerate() {
-            set(*v, self.x[r]);
+        for (v, &x) in self.basis.iter().zip(col_slice(&self.x)) {
+            set(*v, x);
         }
         if let Some((v, t)) = driver {
             set(v, t);

@@ -32,14 +32,16 @@ impl<'a, T: Scalar> Engine<'a, T> {
     /// where no regular row blocks, entries below the pivot tolerance are
     /// read for a block before it ([`Self::read_small_entries`]).
     pub(super) fn ratio_test(&self, col: &Col<T>, v: Var, cap: Option<T>) -> Option<(usize, T)> {
-        let small = T::eps().sqrt() * col_max_abs(col);
+        // (the column's largest entry once for the test and its retries)
+        let colmax = col_max_abs(col);
+        let small = T::eps().sqrt() * colmax;
         // (set again below when a small entry blocks; a test whose block
         // was not pivoted on, L_max first, leaves nothing behind)
         self.refactor_after.set(false);
         self.values_after.set(false);
         let mut excluded: Vec<usize> = Vec::new();
         loop {
-            let (r, theta) = self.ratio_test_excluding(col, v, cap, &excluded)?;
+            let (r, theta) = self.ratio_test_excluding(col, colmax, v, cap, &excluded)?;
             let entry = col[r].abs();
             // (a small entry that the refined column separates from zero:
             // read_small_entries, which marks its pivot for a refactorisation)
@@ -97,17 +99,45 @@ impl<'a, T: Scalar> Engine<'a, T> {
         (0..self.dim).fold(T::zero(), |s, i| s + row[i].abs() * by[i])
     }
 
-    /// [`Self::ratio_test`] with the rows `excluded` no candidates.
+    /// [`Self::ratio_test`] with the rows `excluded` no candidates
+    /// (`colmax`: `col`'s largest absolute entry).
     fn ratio_test_excluding(
         &self,
         col: &Col<T>,
+        colmax: T,
         v: Var,
         cap: Option<T>,
         excluded: &[usize],
     ) -> Option<(usize, T)> {
-        let colmax = col_max_abs(col);
         if colmax == T::zero() {
             return None;
+        }
+        // the rows as slices (the same operations as faer's checked
+        // indexing, without its checks: this test runs at every step of a
+        // trace, the MPC loop's most frequent pass over `dim`)
+        let dim = self.dim;
+        let (cs, xs, basis) = (
+            &col_slice(col)[..dim],
+            &col_slice(&self.x)[..dim],
+            &self.basis[..dim],
+        );
+        // (artificial rows, below, keep the whole column's scale)
+        let ptol_all = self.noise * colmax;
+        // artificial variables are fixed at zero: any move blocks them;
+        // in the same pass as the z/w rows' largest entry (each the same
+        // fold in the same order as a pass of its own)
+        let mut compmax = T::zero();
+        let mut art: Option<usize> = None;
+        for (r, (&c, v)) in cs.iter().zip(basis).enumerate() {
+            match v {
+                Var::W(_) | Var::Z(_) => compmax = compmax.max(c.abs()),
+                Var::Artificial(_)
+                    if c.abs() > ptol_all && art.is_none_or(|a| c.abs() > cs[a].abs()) =>
+                {
+                    art = Some(r);
+                }
+                _ => {}
+            }
         }
         // the pivot tolerance of the candidates is relative to the entries of
         // the sign-constrained rows (z, w): a basic L's entry is the rate of
@@ -115,9 +145,6 @@ impl<'a, T: Scalar> Engine<'a, T> {
         // are large per unit of the driver (L at 1e9, u at 8e4 in the stiffest
         // frame, issue 14 defect 5) they made an accurate entry of 1e-3 at the
         // blocking row look like rounding, and the path ran past the event
-        let compmax = (0..self.dim)
-            .filter(|&r| is_comp(self.basis[r]))
-            .fold(T::zero(), |a, r| a.max(col[r].abs()));
         // but never below the rounding of the whole column (dim roundings of
         // its largest entry): where every z/w entry is rounding (a ray), the
         // largest of them must not become a block (fx128 found one at
@@ -132,32 +159,18 @@ impl<'a, T: Scalar> Engine<'a, T> {
         } else {
             self.noise * colmax
         };
-        // (artificial rows, below, keep the whole column's scale)
-        let ptol_all = self.noise * colmax;
-        // artificial variables are fixed at zero: any move blocks them
-        let mut art: Option<usize> = None;
-        for r in 0..self.dim {
-            if matches!(self.basis[r], Var::Artificial(_))
-                && col[r].abs() > ptol_all
-                && art.is_none_or(|a| col[r].abs() > col[a].abs())
-            {
-                art = Some(r);
-            }
-        }
         if let Some(r) = art {
             return Some((r, T::zero()));
         }
         let xnorm = self.xscale();
         let mut best: Option<T> = None;
-        // the candidates (rows and ratios), recomputed in the second pass
+        // the candidates (rows and ratios), recomputed in the tie pass
         // rather than collected: no allocation unless several rows tie
-        let ratio = |r: usize| {
-            (is_comp(self.basis[r]) && col[r] > ptol && !excluded.contains(&r))
-                .then(|| self.x[r].max(T::zero()) / col[r])
-        };
+        let candidate = |r: usize, c: T, v: Var| is_comp(v) && c > ptol && !excluded.contains(&r);
         let mut first_cand = None;
-        for r in 0..self.dim {
-            if let Some(ratio) = ratio(r) {
+        for (r, ((&c, &x), &v)) in cs.iter().zip(xs).zip(basis).enumerate() {
+            if candidate(r, c, v) {
+                let ratio = x.max(T::zero()) / c;
                 first_cand.get_or_insert(r);
                 best = Some(best.map_or(ratio, |b| b.min(ratio)));
             }
@@ -178,12 +191,16 @@ impl<'a, T: Scalar> Engine<'a, T> {
             }
         }
         let tmin = best?;
-        let is_tied = |r: usize| {
-            ratio(r).is_some_and(|t| t - tmin <= self.tie_tol * (tmin.abs() + xnorm / col[r]))
+        let tied_at = |r: usize, c: T, x: T, v: Var| {
+            candidate(r, c, v) && {
+                let t = x.max(T::zero()) / c;
+                t - tmin <= self.tie_tol * (tmin.abs() + xnorm / c)
+            }
         };
+        let is_tied = |r: usize| tied_at(r, cs[r], xs[r], basis[r]);
         let (mut n_tied, mut first) = (0usize, None);
-        for r in 0..self.dim {
-            if is_tied(r) {
+        for (r, ((&c, &x), &v)) in cs.iter().zip(xs).zip(basis).enumerate() {
+            if tied_at(r, c, x, v) {
                 n_tied += 1;
                 first.get_or_insert(r);
             }

@@ -287,8 +287,8 @@ impl<T: Scalar> BlockInverse<T> {
         };
         if let (Some(lo), Some(hi)) = (acc_lo, acc_hi) {
             let mut ym = self.ym.borrow_mut();
-            for b in 0..k {
-                ym[b] = lo[b] + hi[b];
+            for ((y, &l), &h) in slice_mut_of(&mut ym)[..k].iter_mut().zip(&*lo).zip(&*hi) {
+                *y = l + h;
             }
         }
     }
@@ -305,7 +305,8 @@ impl<T: Scalar> BlockInverse<T> {
         let k = self.k;
         let mut ar = self.ar.borrow_mut();
         ar.clear();
-        ar.extend((0..k).map(|j| a[self.rows[j]]));
+        let a_s = slice_of(a);
+        ar.extend(self.rows[..k].iter().map(|&i| a_s[i]));
         self.flush(Some(&ar));
         self.refined.set(false);
         if self.refine && k > 0 {
@@ -336,23 +337,35 @@ impl<T: Scalar> BlockInverse<T> {
     /// Copies block row `a` and block column `b` of `S` from `G` (after an update
     /// moved them; every other entry keeps its place).
     fn refresh_s(&mut self, a: Option<usize>, b: Option<usize>) {
+        // (through views and slices: the same copies without faer's checked
+        // indexing, once a pivot)
         let k = self.k;
         if let Some(a) = a {
             let i = self.rows[a];
-            for bb in 0..k {
-                self.s[(a, bb)] = self.g[(i, bb)];
-            }
+            self.s
+                .as_mut()
+                .row_mut(a)
+                .subcols_mut(0, k)
+                .copy_from(self.g.as_ref().row(i).subcols(0, k));
         }
         if let Some(b) = b {
-            for aa in 0..k {
-                self.s[(aa, b)] = self.g[(self.rows[aa], b)];
+            let g = col_of(self.g.as_ref(), b);
+            let s = column_slice(self.s.as_mut(), b);
+            for (e, &i) in s[..k].iter_mut().zip(&self.rows[..k]) {
+                *e = g[i];
             }
         }
     }
 
     /// Row `i` of `G` on the block columns.
     fn g_row(&self, i: usize) -> Vec<T> {
-        (0..self.k).map(|b| self.g[(i, b)]).collect()
+        self.g
+            .as_ref()
+            .row(i)
+            .subcols(0, self.k)
+            .iter()
+            .copied()
+            .collect()
     }
 }
 
@@ -472,8 +485,10 @@ impl<T: Scalar> BasisFactor<T> for BlockInverse<T> {
         if out.nrows() != self.dim {
             *out = Col::zeros(self.dim);
         }
-        for (r, slot) in self.slots.iter().enumerate() {
-            out[r] = match *slot {
+        // (over slices: the same operations without faer's index checks)
+        let (a, gy, ym) = (slice_of(a), slice_of(&gy), slice_of(&ym));
+        for (o, slot) in slice_mut_of(out).iter_mut().zip(&self.slots) {
+            *o = match *slot {
                 Slot::Matrix(b) => ym[b],
                 Slot::Identity(i) => a[i] - gy[i],
             };
@@ -503,10 +518,14 @@ impl<T: Scalar> BasisFactor<T> for BlockInverse<T> {
         if y.nrows() != dim {
             *y = Mat::zeros(dim, 2);
         }
-        for j in 0..k {
-            let i = self.rows[j];
-            rhs[(j, 0)] = a[i];
-            rhs[(j, 1)] = b[i];
+        {
+            let (ra, rb) = rhs.as_mut().split_at_col_mut(1);
+            let (ra, rb) = (column_slice(ra, 0), column_slice(rb, 0));
+            let (a, b) = (slice_of(a), slice_of(b));
+            for ((ea, eb), &i) in ra.iter_mut().zip(rb.iter_mut()).zip(&self.rows[..k]) {
+                *ea = a[i];
+                *eb = b[i];
+            }
         }
         let sinv = self.sinv.borrow();
         matmul_par_into(
@@ -591,9 +610,14 @@ impl<T: Scalar> BasisFactor<T> for BlockInverse<T> {
             *rhs = Mat::zeros(dim, 2);
             *prod = Mat::zeros(dim, 2);
         }
-        for b in 0..k {
-            rhs[(b, 0)] = ym[b];
-            rhs[(b, 1)] = x[self.bpos[b]];
+        {
+            let (ry, rx) = rhs.as_mut().split_at_col_mut(1);
+            let (ry, rx) = (column_slice(ry, 0), column_slice(rx, 0));
+            let xs = slice_of(x);
+            ry[..k].copy_from_slice(&slice_of(&ym)[..k]);
+            for (e, &r) in rx.iter_mut().zip(&self.bpos[..k]) {
+                *e = xs[r];
+            }
         }
         matmul_par_into(
             prod.as_mut(),
@@ -700,7 +724,10 @@ impl<T: Scalar> BasisFactor<T> for BlockInverse<T> {
         // is pending; if something is (a caller that did not solve), apply it
         self.flush(None);
         let k = self.k;
-        let ym: Vec<T> = (0..k).map(|b| y[self.bpos[b]]).collect();
+        let ym: Vec<T> = {
+            let y = slice_of(y);
+            self.bpos[..k].iter().map(|&r| y[r]).collect()
+        };
         match (self.slots[r], identity_row(p, entering)) {
             (Slot::Matrix(b), None) => {
                 // column replacement in S: product form on the block
@@ -717,7 +744,7 @@ impl<T: Scalar> BasisFactor<T> for BlockInverse<T> {
                     return false;
                 };
                 let c = self.g_row(i_out);
-                let u: Vec<T> = (0..k).map(|bb| self.sinv.get_mut()[(bb, a)]).collect();
+                let u: Vec<T> = col_of(self.sinv.get_mut().as_ref(), a)[..k].to_vec();
                 let ga = dot_slice(&c, &u);
                 *self.pending.get_mut() = Some(Pending::Row { a, c, u, ga });
                 self.rows[a] = i_out;
