@@ -227,3 +227,16 @@ pub const TIE_REFINE_MAX_COND_EPS: f64 = 0.1;
 /// `pivoting/ratio.rs`, `read_small_entries`): an entry the refinement
 /// separates from zero beyond its error bound blocks.
 pub const SMALL_ENTRY_READS: usize = 4;
+
+/// On a ray with no end (`L` rising, no `lambda_max`) a column entry is read
+/// again as a possible block (`pivoting/ratio.rs`, `read_ray_end`) only
+/// above this many roundings of the working column, `RAY_ENTRY_EPS eps
+/// |col|_max`, in its working and its refined value: a floor that does not
+/// grow with `L` (a step bound there is infinite). Below it a refined entry
+/// of an exact zero can survive its first-order error bound (a random
+/// system (9) read `1.6e-30` against a bound of `7.5e-31` at `L = 2.9e31`,
+/// where the ray is certified exactly); a real event of a rate that small
+/// is lost (`docs/limits.md`). The rates this reads: f32's lost event,
+/// `3.1e-4` of `0.475` (5000 roundings); the block `[[1, 1], [1, 1 +
+/// 2^-46]]` in f64, `2^-46` of one (64).
+pub const RAY_ENTRY_EPS: f64 = 16.0;

@@ -207,3 +207,61 @@ proptest! {
         reached_is_certified::<fx128>(&case)?;
     }
 }
+
+/// The planted block alone with no `L_max`: `M = [[1, 1], [1, 1 + delta]]`,
+/// `q = (1, 1 + 2 delta)`, `d = (-1, -(1 + delta))`. `w_1` leaves at
+/// `L = 1`; then `w_2 = delta (2 - L)` falls at the rate `delta`, below the
+/// pivot tolerance of a column of one, and leaves at `L = 2`; the ray from
+/// there is `z = (1, L - 2)`. Where no row blocks on a ray with no end the
+/// small entries were not read again: f64 claimed `unbounded_ray` from
+/// `L = 1`, `w_2` negative beyond `L = 2` (the rate below the pivot
+/// tolerance, above 16 roundings of the column: f32 at `2^-12`, f64 at
+/// `2^-30`, `2^-40`; fx128 at `2^-50`, the data exact in f64). With the
+/// basis of the last segment (condition about `4 / delta`) within the
+/// precision's limit the path is the exact one, certified; with
+/// `delta = 2^-46` in f64 the
+/// basis at `L = 2` is beyond it and the trace stops `ill_conditioned`
+/// there: never a ray the certificate rejects.
+#[test]
+fn small_rate_on_a_ray_with_no_end_blocks() {
+    fn check<T: Scalar>(k: i32) -> (Status, Vec<f64>, String) {
+        let delta = 2f64.powi(-k);
+        let m = Mat::<T>::from_fn(2, 2, |i, j| {
+            T::from_f64(if i == 1 && j == 1 { 1.0 + delta } else { 1.0 })
+        });
+        let q = Col::<T>::from_fn(2, |i| T::from_f64([1.0, 1.0 + 2.0 * delta][i]));
+        let d = Col::<T>::from_fn(2, |i| T::from_f64([-1.0, -(1.0 + delta)][i]));
+        let problem = Plcp::new(m.as_ref(), q.as_ref(), d.as_ref()).unwrap();
+        assert_eq!(problem.lambda_max(), None);
+        let path = plcp::solve(&problem, &Settings::default()).unwrap();
+        let cert = path.certify(&problem);
+        let at: Vec<f64> = path.breakpoints.iter().map(|b| b.lambda.to_f64()).collect();
+        let got = format!(
+            "{} delta 2^-{k}: {} at {at:?}: {} ({})",
+            T::NAME,
+            path.status.as_str(),
+            cert.summary(),
+            path.message
+        );
+        if path.status.is_success() {
+            assert!(cert.certified(), "{got}");
+        }
+        (path.status, at, got)
+    }
+    for (status, at, got) in [
+        check::<f64>(40),
+        check::<f64>(30),
+        check::<f32>(12),
+        check::<fx128>(50),
+    ] {
+        assert_eq!(status, Status::UnboundedRay, "{got}");
+        assert_eq!(at.len(), 2, "{got}");
+        assert!(
+            (at[0] - 1.0).abs() <= 1e-6 && (at[1] - 2.0).abs() <= 1e-6,
+            "{got}"
+        );
+    }
+    let (status, at, got) = check::<f64>(46);
+    assert_eq!(status, Status::IllConditioned, "{got}");
+    assert!(at.len() == 1 && got.contains("at L = 2e0"), "{got}");
+}

@@ -102,6 +102,49 @@ fn same_path<T: Scalar>(path: &Path<T>, base: &Path<T>, tol: f64) -> Result<(), 
     } else {
         f64::INFINITY
     };
+    same_path_upto(path, base, tol, stop)
+}
+
+/// [`same_path`] where one path may stop `ill_conditioned` and the other
+/// succeed (where a precision gives up depends on its rounding: f32 data
+/// found the event at `L = 325` on a ray with no end, and the basis after
+/// it has condition `9.7e4`, above f32's limit of `8.4e4` unscaled and
+/// below it times `2^-28`): the paths agree up to the stop, and the
+/// successful one is certified exactly.
+fn same_path_or_stop<T: Scalar>(
+    (path, pp): (&Path<T>, &Plcp<T>),
+    (base, pb): (&Path<T>, &Plcp<T>),
+    tol: f64,
+) -> Result<(), String> {
+    let ill = |p: &Path<T>| p.status == Status::IllConditioned;
+    if path.status == base.status || ill(path) == ill(base) {
+        return same_path(path, base, tol);
+    }
+    let (stopped, done, problem) = if ill(path) {
+        (path, base, pb)
+    } else {
+        (base, path, pp)
+    };
+    let cert = plcp::certify(problem, done);
+    if !cert.certified() {
+        return Err(format!(
+            "status {} vs {}, the {} path rejected: {}",
+            path.status.as_str(),
+            base.status.as_str(),
+            done.status.as_str(),
+            cert.summary()
+        ));
+    }
+    same_path_upto(path, base, tol, stopped.lambda_reached.to_f64())
+}
+
+/// The comparison of [`same_path`] up to `stop`.
+fn same_path_upto<T: Scalar>(
+    path: &Path<T>,
+    base: &Path<T>,
+    tol: f64,
+    stop: f64,
+) -> Result<(), String> {
     let (sa, sb) = (
         long_segments(path, tol, stop),
         long_segments(base, tol, stop),
@@ -148,48 +191,6 @@ fn same_path<T: Scalar>(path: &Path<T>, base: &Path<T>, tol: f64) -> Result<(), 
         }
     }
     Ok(())
-}
-
-/// The known engine gap (`docs/limits.md`; reproduced by
-/// `f32_lost_event_on_an_unbounded_ray`, ignored): both paths claim an
-/// unbounded ray, one of them from an earlier segment, on which a basic
-/// variable in fact reaches zero later, and the exact certificate rejects
-/// that one and accepts the other. The paths agree up to the shorter one's
-/// ray. `Some(description)` for that case.
-fn lost_event_on_a_ray<T: Scalar>(
-    (a, pa): (&Path<T>, &Plcp<T>),
-    (b, pb): (&Path<T>, &Plcp<T>),
-    tol: f64,
-) -> Option<String> {
-    if a.status != Status::UnboundedRay || b.status != Status::UnboundedRay {
-        return None;
-    }
-    let (sa, sb) = (
-        long_segments(a, tol, f64::INFINITY),
-        long_segments(b, tol, f64::INFINITY),
-    );
-    let (short, long, ps, pl) = if sa.len() < sb.len() {
-        (a, b, pa, pb)
-    } else {
-        (b, a, pb, pa)
-    };
-    let (ss, sl) = (
-        long_segments(short, tol, f64::INFINITY),
-        long_segments(long, tol, f64::INFINITY),
-    );
-    if ss.len() >= sl.len() || ss.is_empty() {
-        return None;
-    }
-    // the same bases up to where the short one claims its ray
-    if !ss.iter().zip(&sl).all(|(x, y)| x.2 == y.2) {
-        return None;
-    }
-    let (cs, cl) = (plcp::certify(ps, short), plcp::certify(pl, long));
-    let reason = cs.failure.as_ref()?.reason.clone();
-    if !cl.certified() || !reason.contains("claimed to hold for every larger L") {
-        return None;
-    }
-    Some(reason)
 }
 
 /// `path` (data scaled by `2^k`) is `base` bit for bit: breakpoints, `z`, and
@@ -377,14 +378,12 @@ fn invariant<T: Scalar>(data: &Data, k: i32, j: i32, tol: f64) -> Result<(), Tes
         )
     };
     let (p0, pk) = (scaled::<T>(data, 1.0), scaled::<T>(data, s));
-    if let Err(e) = same_path(&at_k, &base, tol) {
-        if lost_event_on_a_ray((&at_k, &pk), (&base, &p0), tol).is_none() {
-            return Err(TestCaseError::fail(format!(
-                "{}: 2^{k}: {e}{}",
-                T::NAME,
-                diag(&at_k)
-            )));
-        }
+    if let Err(e) = same_path_or_stop((&at_k, &pk), (&base, &p0), tol) {
+        return Err(TestCaseError::fail(format!(
+            "{}: 2^{k}: {e}{}",
+            T::NAME,
+            diag(&at_k)
+        )));
     }
     if k.abs() >= 32 {
         let k2 = k - 16 * k.signum();
@@ -395,12 +394,8 @@ fn invariant<T: Scalar>(data: &Data, k: i32, j: i32, tol: f64) -> Result<(), Tes
     let s = 10f64.powi(j);
     let pj = scaled::<T>(data, s);
     let at_j = solve(&pj);
-    match same_path(&at_j, &base, tol) {
-        Err(e) if lost_event_on_a_ray((&at_j, &pj), (&base, &p0), tol).is_none() => Err(
-            TestCaseError::fail(format!("{}: 10^{j}: {e}{}", T::NAME, diag(&at_j))),
-        ),
-        _ => Ok(()),
-    }
+    same_path_or_stop((&at_j, &pj), (&base, &p0), tol)
+        .map_err(|e| TestCaseError::fail(format!("{}: 10^{j}: {e}{}", T::NAME, diag(&at_j))))
 }
 
 proptest! {
@@ -458,9 +453,11 @@ fn same_path_rejects_a_perturbed_path() {
 /// f32 the unscaled data give both; the data times `2^62` (normalised by the
 /// equilibration, so rounded differently) claim the unbounded ray from
 /// `32.874`: the event at `108.8` is lost and the exact certificate rejects
-/// the ray. A wrong `unbounded_ray` of the engine, not of the test.
+/// the ray. A wrong `unbounded_ray` of the engine, not of the test: `z6`
+/// falls at `3.1e-4` against rates up to `0.475`, below the pivot
+/// tolerance, and small entries were not read again on a ray with no end
+/// (now they are, above one rounding of the column: `read_ray_end`).
 #[test]
-#[ignore = "engine gap (docs/limits.md): in f32 a basic variable's small rate on the last segment is taken as zero and a real event far along the ray is lost (unbounded_ray claimed, rejected by the certificate); needs the small-entry reading on rays with no end"]
 fn f32_lost_event_on_an_unbounded_ray() {
     let rows: [[f64; 7]; 7] = [
         [

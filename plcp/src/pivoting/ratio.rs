@@ -178,14 +178,15 @@ impl<'a, T: Scalar> Engine<'a, T> {
         // a row whose entry is below the tolerance may still block first
         // (issue 14): read again where the data are exact as given, before
         // the first regular block or, where none blocks, before the end of
-        // the trace (`cap`, L_max). Never on a ray with no end: an entry
-        // below the tolerance would turn the ray into a block far along
-        // it, from refined entries near the wide type's own resolution (a
-        // random system (9) read one at L = 2.9e31, 1.6e-30 against a bound
-        // of 7.5e-31, where the same basis's ray is certified exactly)
+        // the trace (`cap`, L_max). On a ray with no end the trace reads
+        // them with a floor instead (`read_ray_end`): with no step bound,
+        // refined entries near the wide type's own resolution would turn
+        // the ray into a block far along it (a random system (9) read one
+        // at L = 2.9e31, 1.6e-30 against a bound of 7.5e-31, where the same
+        // basis's ray is certified exactly)
         if self.settings.near_ties == crate::settings::NearTies::Refine {
             if let Some(bound) = best.or(cap) {
-                if let Some(block) = self.read_small_entries(col, v, ptol, bound, excluded) {
+                if let Some(block) = self.read_small_entries(col, v, ptol, Some(bound), excluded) {
                     return Some(block);
                 }
             }
@@ -367,12 +368,24 @@ impl<'a, T: Scalar> Engine<'a, T> {
     /// At most [`crate::tolerance::SMALL_ENTRY_READS`] rows (the smallest
     /// ratios) are read; nothing is read, and nothing allocated, where no
     /// row qualifies.
+    ///
+    /// `bound` `None`: a ray with no end ([`Self::read_ray_end`]). No step
+    /// bounds the reading there, so the entry itself must stand above a
+    /// floor that does not grow with `L`: a few roundings of the working
+    /// column ([`crate::tolerance::RAY_ENTRY_EPS`] `eps |col|_max`), in the
+    /// working entry (which rows are read) and in the refined one (which
+    /// block). Below that a refined zero can survive its bound, a
+    /// first-order estimate (a random system (9) read `1.6e-30` against a bound of
+    /// `7.5e-31` at `L = 2.9e31`, where the same basis's ray is certified
+    /// exactly); above it the working precision holds the rate to a few
+    /// digits, and f32 lost a real event at `L = 108.8` (`z6` falling at
+    /// `3.1e-4` against rates up to `0.475`, `scale_invariance.rs`).
     fn read_small_entries(
         &self,
         col: &Col<T>,
         v: Var,
         ptol: T,
-        bound: T,
+        bound: Option<T>,
         excluded: &[usize],
     ) -> Option<(usize, T)> {
         // a row can block before `bound` with an entry at most `ptol` only if
@@ -381,14 +394,22 @@ impl<'a, T: Scalar> Engine<'a, T> {
         // refactorisation the block's `2^-46` came out as an exact zero)
         // (and the working value itself may be a rounding of a small one:
         // the pivot noise of the values' scale on top)
-        let reach = bound * ptol + self.noise * self.xscale();
+        let floor = match bound {
+            Some(_) => T::zero(),
+            None => T::from_f64(crate::tolerance::RAY_ENTRY_EPS) * T::eps() * col_max_abs(col),
+        };
+        let reach = bound.map(|b| b * ptol + self.noise * self.xscale());
         let qualifies = |r: usize| {
             let c = col[r];
-            (is_comp(self.basis[r])
-                && c.abs() <= ptol
-                && self.x[r] <= reach
-                && !excluded.contains(&r))
-            .then(|| self.x[r].max(T::zero()))
+            let candidate = is_comp(self.basis[r]) && !excluded.contains(&r);
+            let x = self.x[r].max(T::zero());
+            match reach {
+                Some(reach) => (candidate && c.abs() <= ptol && self.x[r] <= reach).then_some(x),
+                // (on a ray every entry is below the tolerance or was read
+                // as rounding by the ratio test) the working ratio, for
+                // the order of the reads
+                None => (candidate && c > floor && x.is_finite()).then(|| x / c),
+            }
         };
         if !(0..self.dim).any(|r| qualifies(r).is_some()) {
             return None;
@@ -400,10 +421,11 @@ impl<'a, T: Scalar> Engine<'a, T> {
         rows.truncate(crate::tolerance::SMALL_ENTRY_READS);
         let rows: Vec<usize> = rows.into_iter().map(|(_, r)| r).collect();
         let reads = self.refined_ratios(v, col, &rows);
+        let (bound, floor) = (bound.map_or(f64::INFINITY, |b| b.to_f64()), floor.to_f64());
         let mut best: Option<(usize, T::Wide, f64)> = None;
         for (k, read) in reads.iter().enumerate() {
             // (an infinite bound: the entry is not separated from zero)
-            if !read.err.is_finite() {
+            if !read.err.is_finite() || read.entry <= floor {
                 continue;
             }
             // (a refined step of zero is a block too: after the exact tie
@@ -411,7 +433,7 @@ impl<'a, T: Scalar> Engine<'a, T> {
             // stays basic at -2.5e-29 on an entry of 4.5e-13, step 0 +-
             // 1.4e-16, and runs negative if it is not taken)
             let t = read.ratio.to_f64();
-            if t + read.err >= bound.to_f64() {
+            if t + read.err >= bound || !T::narrow(read.ratio).is_finite() {
                 continue;
             }
             if best.is_none_or(|(_, b, _)| read.ratio < b) {
@@ -429,6 +451,7 @@ impl<'a, T: Scalar> Engine<'a, T> {
                 let read = &reads[k];
                 rows[k] != r
                     && read.err.is_finite()
+                    && read.entry > floor
                     && (read.ratio - ratio).to_f64() - read.err <= err
             })
             .collect();
@@ -465,6 +488,21 @@ impl<'a, T: Scalar> Engine<'a, T> {
         self.near_ties.set((resolved + 1, unresolved));
         self.refactor_after.set(true);
         Some((r, T::narrow(ratio).max(T::zero())))
+    }
+
+    /// Where the ratio test found no block and `L` rises with no end
+    /// (`lambda_max` none): the positive entries of the entering column
+    /// `col` of `v` read again before the trace claims an unbounded ray
+    /// ([`Self::read_small_entries`] with no step bound). `Some`: the row
+    /// that blocks after all, at its refined step. Only with
+    /// [`crate::settings::NearTies::Refine`]; once per ray, and nothing is
+    /// read where no entry stands above the floor.
+    pub(super) fn read_ray_end(&self, col: &Col<T>, v: Var) -> Option<(usize, T)> {
+        if self.settings.near_ties != crate::settings::NearTies::Refine {
+            return None;
+        }
+        // (no tolerance: every entry of the right sign above the floor)
+        self.read_small_entries(col, v, T::zero(), None, &[])
     }
 
     /// Pivot `entering` (column `col = B^{-1} a`, value `value`) into row `r`.

@@ -486,10 +486,12 @@ impl<'a, T: Scalar> Engine<'a, T> {
 
 /// A row of the minimum-ratio test read again with refined values
 /// ([`Engine::refined_ratios`]): the ratio `x_r / col_r` in the wide type and
-/// a bound on its error (`f64::INFINITY`: not decided).
+/// a bound on its error (`f64::INFINITY`: not decided), and the refined
+/// column entry `col_r` (zero where not decided).
 pub(super) struct RefinedRatio<W> {
     pub ratio: W,
     pub err: f64,
+    pub entry: f64,
 }
 
 impl<T: Scalar> Engine<'_, T> {
@@ -526,6 +528,7 @@ impl<T: Scalar> Engine<'_, T> {
                 .map(|_| RefinedRatio {
                     ratio: T::zero().widen(),
                     err: f64::INFINITY,
+                    entry: 0.0,
                 })
                 .collect()
         };
@@ -651,12 +654,17 @@ impl<T: Scalar> Engine<'_, T> {
                     return RefinedRatio {
                         ratio: zero,
                         err: f64::INFINITY,
+                        entry: 0.0,
                     };
                 }
                 let ratio = xw / cw;
                 let t = ratio.to_f64();
                 let err = (ex + t * ec) / (c - ec) + 4.0 * eps_w * t;
-                RefinedRatio { ratio, err }
+                RefinedRatio {
+                    ratio,
+                    err,
+                    entry: c,
+                }
             })
             .collect()
     }
