@@ -16,11 +16,15 @@
 //!
 //! `cargo run --release -q --example obstacle -- [N] [L_max]` (default 32 and 4).
 
+#[path = "common/stdout.rs"]
+mod stdout;
+
 use faer::Col;
 use plcp::matrix::Csc;
 use plcp::{solve_observed, Control, Keep, Progress};
 use plcp::{BasisKind, Method, Plcp, Segment, Settings, Var};
 use std::cell::RefCell;
+use std::io::Write;
 use std::rc::Rc;
 
 /// `(M, q, d)` of the obstacle problem on an `N x N` grid of interior nodes.
@@ -75,6 +79,10 @@ fn obstacle(nx: usize) -> Result<Plcp<f64>, plcp::PlcpError> {
 }
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
+    stdout::run(run)
+}
+
+fn run(out: &mut impl Write) -> Result<(), Box<dyn std::error::Error>> {
     let args: Vec<String> = std::env::args().collect();
     let nx: usize = args.get(1).map_or(Ok(32), |s| s.parse())?;
     let lambda_max: f64 = args.get(2).map_or(Ok(4.0), |s| s.parse())?;
@@ -99,7 +107,8 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let secs = t.elapsed().as_secs_f64();
     let path = &run.path;
     let contacts = contacts.borrow();
-    println!(
+    writeln!(
+        out,
         "obstacle N = {nx}: n = {n}, nnz(M) = {}, status {}, L reached {}, {} pivots, {} segments, {:.3} s, path held {} bytes, residual {:.1e}, warm start {}",
         5 * n - 4 * nx,
         path.status.as_str(),
@@ -110,12 +119,15 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         path.info.path_bytes,
         path.info.residual.worst(),
         path.info.warm_start
-    );
+    )?;
     if let Some((l, c)) = contacts.iter().find(|(_, c)| *c > 0) {
-        println!("first contact on the segment ending at L = {l:.6} ({c} node)");
+        writeln!(
+            out,
+            "first contact on the segment ending at L = {l:.6} ({c} node)"
+        )?;
     }
     if let Some((l, c)) = contacts.last() {
-        println!("contact at the end (L = {l}): {c} nodes");
+        writeln!(out, "contact at the end (L = {l}): {c} nodes")?;
     }
     Ok(())
 }

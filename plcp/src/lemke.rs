@@ -398,6 +398,7 @@ pub fn solve_lcp<T: Scalar>(
         ),
         Ok(mut eng) => {
             let r = start_phase(&mut eng, &q, &d, T::zero(), Some(&covering));
+            eng.estimate_end_condition();
             info.pivots = eng.pivots;
             info.start_pivots = eng.pivots;
             info.degenerate_pivots = eng.degenerate_pivots;

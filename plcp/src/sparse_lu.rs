@@ -392,6 +392,9 @@ pub(crate) fn hager_inverse_norm1<T: Scalar>(
     let mut x = Col::<T>::from_fn(dim, |_| T::from_f64(1.0 / dim as f64));
     let mut est = 0.0f64;
     let mut last_j = usize::MAX;
+    // (one sign vector for every iteration: the end-of-path estimate of the
+    // pivoting core runs this on small bases, where allocations show)
+    let mut s = Col::<T>::zeros(dim);
     for iter in 0..5 {
         solve(&mut x);
         let e = norm1(&x);
@@ -402,13 +405,13 @@ pub(crate) fn hager_inverse_norm1<T: Scalar>(
             break;
         }
         est = e;
-        let mut s = Col::<T>::from_fn(dim, |i| {
-            if x[i] >= T::zero() {
+        for i in 0..dim {
+            s[i] = if x[i] >= T::zero() {
                 T::one()
             } else {
                 -T::one()
-            }
-        });
+            };
+        }
         solve_t(&mut s);
         let (mut j, mut zmax) = (0usize, -1.0f64);
         for i in 0..dim {
@@ -425,16 +428,16 @@ pub(crate) fn hager_inverse_norm1<T: Scalar>(
             break;
         }
         last_j = j;
-        x = Col::zeros(dim);
+        x.fill(T::zero());
         x[j] = T::one();
     }
     // Higham's safeguard: b_i = (-1)^i (1 + i / (n - 1))
-    let mut b = Col::<T>::from_fn(dim, |i| {
+    for i in 0..dim {
         let v = 1.0 + i as f64 / (dim.max(2) - 1) as f64;
-        T::from_f64(if i % 2 == 0 { v } else { -v })
-    });
-    solve(&mut b);
-    let alt = 2.0 * norm1(&b) / (3.0 * dim as f64);
+        x[i] = T::from_f64(if i % 2 == 0 { v } else { -v });
+    }
+    solve(&mut x);
+    let alt = 2.0 * norm1(&x) / (3.0 * dim as f64);
     if !alt.is_finite() {
         return f64::INFINITY;
     }

@@ -260,21 +260,14 @@ impl Analysis {
             .collect()
     }
 
-    /// The `intervals`, written one at a time (the part owns its
-    /// selections, shared, as each pass of the serialiser makes a new
-    /// iterator). Each entry is serialised straight from the reading and
-    /// the response ([`IntervalEntry`]); only the hinge sets and the member
-    /// forces of the selected intervals are built as values.
-    fn intervals_part(
-        &self,
-        node_sel: Vec<usize>,
-        interval_sel: Vec<usize>,
-        hinge_sets: HingeSets,
-    ) -> Part<'_> {
+    /// The keys of the per-node series (the response's, the intervals'
+    /// accelerations) in the order a `Map` writes them: the nodes `sel` by
+    /// id, a node selected twice once, each with its slot in the response's
+    /// node-indexed vectors; and the model's components by name, each with
+    /// its slot in a node's six (a model's components are distinct).
+    fn series_keys(&self, sel: &[usize]) -> SeriesKeys<'_> {
         let fr = &self.scene.frame;
-        // the accelerations' keys in the order a `Map` writes them: node ids
-        // (unique) and component names, sorted
-        let mut nodes: Vec<(&str, usize)> = node_sel
+        let mut nodes: Vec<(&str, usize)> = sel
             .iter()
             .map(|&i| (fr.nodes[i].id.as_str(), self.response.slot(i).unwrap_or(i)))
             .collect();
@@ -287,6 +280,22 @@ impl Analysis {
             .map(|c| (c.as_str(), c.index()))
             .collect();
         comps.sort();
+        (nodes, comps)
+    }
+
+    /// The `intervals`, written one at a time (the part owns its
+    /// selections, shared, as each pass of the serialiser makes a new
+    /// iterator). Each entry is serialised straight from the reading and
+    /// the response ([`IntervalEntry`]); only the hinge sets and the member
+    /// forces of the selected intervals are built as values.
+    fn intervals_part(
+        &self,
+        node_sel: Vec<usize>,
+        interval_sel: Vec<usize>,
+        hinge_sets: HingeSets,
+    ) -> Part<'_> {
+        // the accelerations' keys in the order a `Map` writes them
+        let (nodes, comps) = self.series_keys(&node_sel);
         let shared = std::rc::Rc::new((node_sel, interval_sel, nodes, comps));
         Part::Intervals(Box::new(move || {
             let shared = shared.clone();
@@ -709,6 +718,9 @@ impl<V: serde::Serialize, F: Fn(usize) -> V> serde::Serialize for MemberMoments<
     }
 }
 
+/// The node keys and the component keys of [`Analysis::series_keys`].
+type SeriesKeys<'a> = (Vec<(&'a str, usize)>, Vec<(&'static str, usize)>);
+
 /// The `response` of the JSON report (keys in a `Map`'s order), its
 /// series written straight from the time response.
 struct ResponsePart<'a> {
@@ -720,24 +732,8 @@ impl serde::Serialize for ResponsePart<'_> {
     fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
         use serde::ser::SerializeMap;
         let a = self.analysis;
-        let fr = &a.scene.frame;
         let t = &a.response.time;
-        // the nodes by id (a map's order; a node named twice once)
-        let mut nodes: Vec<(&str, usize)> = self
-            .nodes
-            .iter()
-            .map(|&i| (fr.nodes[i].id.as_str(), a.response.slot(i).unwrap_or(i)))
-            .collect();
-        nodes.sort_by(|x, y| x.0.cmp(y.0));
-        nodes.dedup_by(|x, y| x.0 == y.0);
-        let mut comps: Vec<(&'static str, usize)> = fr
-            .model
-            .components()
-            .iter()
-            .map(|c| (c.as_str(), c.index()))
-            .collect();
-        comps.sort();
-        comps.dedup_by(|x, y| x.0 == y.0);
+        let (nodes, comps) = a.series_keys(&self.nodes);
         struct Series<'s>(&'s [Vec<[f64; 6]>], usize, &'s [(&'static str, usize)]);
         impl serde::Serialize for Series<'_> {
             fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {

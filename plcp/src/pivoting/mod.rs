@@ -28,6 +28,8 @@ mod free;
 mod phases;
 mod ratio;
 mod refine;
+#[cfg(test)]
+mod tests;
 mod trace;
 
 pub(crate) use phases::{finish_lean, finish_path, run_path, start_phase};
@@ -145,7 +147,12 @@ pub(crate) struct Engine<'a, T: Scalar> {
     /// The basis representation refines its own solves (cheaper than
     /// [`Engine::refine_column`]: the block basis refines on `S` alone).
     refine_inside: bool,
+    /// The largest condition estimate of a basis of the path: at each
+    /// refactorisation, and at its end ([`Self::estimate_end_condition`]).
     pub max_cond: f64,
+    /// The basis changed since its condition was last estimated (a pivot
+    /// since the last refactorisation or end estimate).
+    cond_stale: bool,
     pivot_tol: T,
     /// Print every pivot to stderr (environment variable `PLCP_TRACE` set).
     pub(crate) trace_pivots: bool,
@@ -303,6 +310,7 @@ impl<'a, T: Scalar> Engine<'a, T> {
             refine_wide: false,
             refine_inside: false,
             max_cond: 1.0,
+            cond_stale: false,
             pivot_tol: T::from_f64(settings.pivot_tol_eps) * T::eps(),
             noise: T::from_f64(settings.pivot_tol_eps) * T::eps(),
             trace_pivots: std::env::var_os("PLCP_TRACE").is_some(),
@@ -354,6 +362,9 @@ impl<'a, T: Scalar> Engine<'a, T> {
 
     /// Rebuilds the factorisation and the basic values (drift correction).
     pub(crate) fn refactor(&mut self) -> Result<(), String> {
+        // estimated here; or, if the basis is singular, left as the factor's
+        // failure found it (not to be solved with, the path ends there)
+        self.cond_stale = false;
         let cond = self
             .factor
             .refactor(self.m, &self.d, self.p, &self.basis)
@@ -389,6 +400,26 @@ impl<'a, T: Scalar> Engine<'a, T> {
             ));
         }
         Ok(())
+    }
+
+    /// Estimates the condition of the basis the path ends on, if it changed
+    /// since the last estimate, into [`Self::max_cond`]: the refactorisations
+    /// alone sample it every `refactor_period` pivots, and a shorter path
+    /// reported its starting basis (the identity: 1), which understated how
+    /// well the answer is known and let a doubtful path escape escalation
+    /// (`escalate.rs`). `O(dim^2)` with the dense inverse, `O(dim k)` with the
+    /// block one (about eleven solves, [`crate::basis::BasisFactor::condition`]);
+    /// nothing when the last pivot was followed by a refactorisation.
+    /// The bases between refactorisations inside the path stay unsampled.
+    pub(crate) fn estimate_end_condition(&mut self) {
+        if !self.cond_stale {
+            return;
+        }
+        self.cond_stale = false;
+        let cond = self.factor.condition(self.m, &self.d, self.p, &self.basis);
+        if !cond.is_nan() {
+            self.max_cond = self.max_cond.max(cond);
+        }
     }
 
     /// The basic values `x = B^{-1} (q + L d)` from the current factorisation,

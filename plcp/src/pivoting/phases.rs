@@ -310,6 +310,7 @@ pub(crate) fn run_path<T: Scalar>(
     if let Err(f) =
         started.and_then(|_| start_phase(&mut eng, q, d, lambda0, settings.covering.as_ref()))
     {
+        eng.estimate_end_condition();
         fill(&mut info, &eng);
         info.start_pivots = eng.pivots;
         info.solve_seconds = timer.elapsed().as_secs_f64();
@@ -435,6 +436,7 @@ pub(crate) fn finish_path<T: Scalar>(
             (Status::IllConditioned, eng.point(None), l, None, msg)
         }
     };
+    eng.estimate_end_condition();
     fill(&mut info, eng);
     info.turning_points = rec.turning_points;
     info.solve_seconds = timer.elapsed().as_secs_f64();

@@ -538,6 +538,7 @@ impl<'a, T: Scalar> Engine<'a, T> {
         let ei = self.var_index(entering);
         self.pos[ei] = Some(r);
         self.basis[r] = entering;
+        self.cond_stale = true;
         let updated = self
             .factor
             .replace(self.m, &self.d, self.p, r, leaving, entering, col);
