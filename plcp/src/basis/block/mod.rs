@@ -683,29 +683,40 @@ impl<T: Scalar> BasisFactor<T> for BlockInverse<T> {
         self.flush(None);
         let sinv = self.sinv.borrow();
         let k = self.k;
+        // (over slices, in the order of the indexed loops it replaces: faer's
+        // checked indexing was most of the end-of-path condition estimate)
         let mut pi = Col::<T>::zeros(self.dim);
-        for (r, slot) in self.slots.iter().enumerate() {
-            if let Slot::Identity(i) = slot {
-                pi[*i] = c[r];
+        let c = slice_of(c);
+        {
+            let pi = slice_mut_of(&mut pi);
+            for (slot, &cr) in self.slots.iter().zip(c) {
+                if let Slot::Identity(i) = *slot {
+                    pi[i] = cr;
+                }
             }
         }
-        let t: Vec<T> = (0..k)
-            .map(|b| {
-                let mut v = c[self.bpos[b]];
-                for i in 0..self.dim {
-                    if self.row_block[i].is_none() {
-                        v -= self.g[(i, b)] * pi[i];
+        let t: Vec<T> = {
+            let pi = slice_of(&pi);
+            (0..k)
+                .map(|b| {
+                    let mut v = c[self.bpos[b]];
+                    let g = &col_of(self.g.as_ref(), b)[..self.dim];
+                    for ((&gi, &pii), rb) in g.iter().zip(pi).zip(&self.row_block) {
+                        if rb.is_none() {
+                            v -= gi * pii;
+                        }
                     }
-                }
-                v
-            })
-            .collect();
-        for a in 0..k {
+                    v
+                })
+                .collect()
+        };
+        let pi_s = slice_mut_of(&mut pi);
+        for (a, &row) in self.rows[..k].iter().enumerate() {
             let mut v = T::zero();
-            for (b, tb) in t.iter().enumerate() {
-                v += sinv[(b, a)] * *tb;
+            for (&s, tb) in col_of(sinv.as_ref(), a)[..k].iter().zip(&t) {
+                v += s * *tb;
             }
-            pi[self.rows[a]] = v;
+            pi_s[row] = v;
         }
         pi
     }
