@@ -701,30 +701,42 @@ impl<'a, T: Scalar> Engine<'a, T> {
         let mut dz = Col::zeros(self.n);
         let mut dw = Col::zeros(self.n);
         let mut du = Col::zeros(self.p);
-        let mut set = |v: Var, val: T| match v {
-            Var::W(i) => dw[i] = val,
-            Var::Z(i) => dz[i] = val,
-            Var::U(j) => du[j] = val,
-            _ => {}
-        };
-        for (r, v) in self.basis.iter().enumerate() {
-            set(*v, -col[r] / rate);
+        {
+            // over slices, as `scatter` (faer's checked indexing was an
+            // assert per entry of `col` and per store)
+            let (z, w, u) = (
+                col_slice_mut(&mut dz),
+                col_slice_mut(&mut dw),
+                col_slice_mut(&mut du),
+            );
+            let mut set = |v: Var, val: T| match v {
+                Var::W(i) => w[i] = val,
+                Var::Z(i) => z[i] = val,
+                Var::U(j) => u[j] = val,
+                _ => {}
+            };
+            for (v, &c) in self.basis.iter().zip(col_slice(col)) {
+                set(*v, -c / rate);
+            }
+            set(driver, T::one() / rate);
         }
-        set(driver, T::one() / rate);
         (dz, dw, du)
     }
 
+    /// The complementary basis of a segment: `W(i)` where `w_i` is basic or
+    /// the driver, else `Z(i)`; then the basic free variables.
     fn segment_basis(&self, driver: Var) -> Vec<Var> {
-        let mut b = Vec::with_capacity(self.n + self.p);
-        for i in 0..self.n {
-            if self.row_of(Var::W(i)).is_some() || driver == Var::W(i) {
+        let (n, p) = (self.n, self.p);
+        let mut b = Vec::with_capacity(n + p);
+        for (i, r) in self.pos[..n].iter().enumerate() {
+            if r.is_some() || driver == Var::W(i) {
                 b.push(Var::W(i));
             } else {
                 b.push(Var::Z(i));
             }
         }
-        for j in 0..self.p {
-            if self.row_of(Var::U(j)).is_some() {
+        for (j, r) in self.pos[2 * n..2 * n + p].iter().enumerate() {
+            if r.is_some() {
                 b.push(Var::U(j));
             }
         }
@@ -742,6 +754,15 @@ impl<'a, T: Scalar> Engine<'a, T> {
     ) {
         if !rec.keep_segments {
             return;
+        }
+        if rec.segments.len() == rec.segments.capacity() {
+            // room for about one segment per two rows at once: a path has
+            // about that many pivots on everyday problems, and each doubling
+            // from the first two was a `realloc` of about 3 k instructions
+            // (glibc consolidates its freed small chunks for it), three of
+            // them at n = 20 (issue 20)
+            let len = rec.segments.len();
+            rec.segments.reserve(len.max((self.n + self.p) / 2 + 2));
         }
         // a segment starts with the driver at zero
         let start = self.point(Some((driver, T::zero())));
