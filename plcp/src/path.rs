@@ -172,8 +172,27 @@ pub struct Segment<T: Scalar> {
     pub du: Col<T>,
 }
 
+/// The entries of an owned (contiguous) column.
+fn entries<T: Scalar>(c: &Col<T>) -> &[T] {
+    c.as_ref()
+        .try_as_col_major()
+        .expect("an owned column is contiguous")
+        .as_slice()
+}
+
+/// The entries of an owned (contiguous) column, mutable.
+fn entries_mut<T: Scalar>(c: &mut Col<T>) -> &mut [T] {
+    c.as_mut()
+        .try_as_col_major_mut()
+        .expect("an owned column is contiguous")
+        .as_slice_mut()
+}
+
 fn affine<T: Scalar>(from: &Col<T>, slope: &Col<T>, dl: T) -> Col<T> {
-    Col::from_fn(from.nrows(), |i| from[i] + slope[i] * dl)
+    // over slices: faer's checked indexing (an assert per entry) was most
+    // of an evaluation, which the end measure makes twice a path
+    let (from, slope) = (entries(from), entries(slope));
+    Col::from_fn(from.len(), |i| from[i] + slope[i] * dl)
 }
 
 impl<T: Scalar> Segment<T> {
@@ -207,9 +226,12 @@ impl<T: Scalar> Segment<T> {
                 visible_max(z.iter().copied()),
                 visible_max(w.iter().copied()),
             );
-            for i in 0..z.nrows() {
-                z[i] = rule.z(z[i], self.z_from[i], self.dz[i]);
-                w[i] = rule.w(w[i], self.w_from[i], self.dw[i]);
+            let (zf, dz) = (entries(&self.z_from), entries(&self.dz));
+            let (wf, dw) = (entries(&self.w_from), entries(&self.dw));
+            let (zs, ws) = (entries_mut(&mut z), entries_mut(&mut w));
+            for i in 0..zs.len() {
+                zs[i] = rule.z(zs[i], zf[i], dz[i]);
+                ws[i] = rule.w(ws[i], wf[i], dw[i]);
             }
         }
         Point {
