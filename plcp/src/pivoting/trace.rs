@@ -178,29 +178,25 @@ impl<'a, T: Scalar> Engine<'a, T> {
                     }
                     return TraceEnd::UnboundedRay { driver, col, rate };
                 }
-                // not rising is a claim that the rate of L is zero or less: a
-                // positive rate above its own componentwise rounding that the
-                // noise of the basis hides (f32 at condition ~7e4: a rate of
-                // 1.39e4 against a tolerance of 1.47e4, its rounding 7.5e3)
-                // could be a rising ray, and the precision cannot tell which
-                if rate > T::zero() {
-                    let bound = match (driver, self.row_of(Var::Lambda)) {
-                        (Var::Lambda, _) | (_, None) => T::zero(),
-                        (_, Some(l)) => self.pivot_tol * self.entry_rounding(l, &col),
-                    };
-                    if rate > bound {
-                        self.col_buf = col;
-                        return TraceEnd::IllConditioned(format!(
-                            "no block at L = {:e} and a rate of L of {:e}: below the \
-                             basis's noise {:e} but above its own rounding {:e}, so {} \
-                             cannot tell an unbounded ray from a secondary ray",
-                            self.lambda.to_f64(),
-                            rate.to_f64(),
-                            rate_tol.to_f64(),
-                            bound.to_f64(),
-                            T::NAME
-                        ));
-                    }
+                // not rising is a claim that the rate of L is zero or less:
+                // a positive rate that is not small against its column (the
+                // small-rate test above, sqrt(eps) max|col|) and still below
+                // the basis's noise means the noise exceeds sqrt(eps) of the
+                // column, and the precision cannot tell a rising ray from a
+                // secondary one (f32 at condition ~7e4: a rate of 1.39e4, the
+                // column's largest entry, against a tolerance of 1.47e4)
+                if rate > T::eps().sqrt() * colmax {
+                    self.col_buf = col;
+                    return TraceEnd::IllConditioned(format!(
+                        "no block at L = {:e} and a rate of L of {:e}, not small against \
+                         its column ({:e}) but below the basis's noise {:e}: {} cannot \
+                         tell an unbounded ray from a secondary ray",
+                        self.lambda.to_f64(),
+                        rate.to_f64(),
+                        colmax.to_f64(),
+                        rate_tol.to_f64(),
+                        T::NAME
+                    ));
                 }
                 return TraceEnd::SecondaryRay { driver, col, rate };
             };
