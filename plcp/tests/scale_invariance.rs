@@ -539,6 +539,139 @@ fn f32_lost_event_on_an_unbounded_ray() {
     }
 }
 
+/// The data of seed 30 of the f32 property test (a shrink): an unbounded
+/// ray after four events, the last at `L = 325`.
+fn seed30() -> Data {
+    let rows: [[f64; 6]; 6] = [
+        [
+            2.0078125,
+            -0.81640625,
+            0.33203125,
+            -0.515625,
+            1.328125,
+            -0.41796875,
+        ],
+        [
+            -1.81640625,
+            1.88671875,
+            -0.03515625,
+            0.234375,
+            -0.671875,
+            0.390625,
+        ],
+        [
+            0.33203125,
+            -0.03515625,
+            2.0234375,
+            -0.859375,
+            1.1640625,
+            0.25390625,
+        ],
+        [
+            -0.515625, 0.734375, -0.859375, 2.01953125, 0.3984375, -0.15625,
+        ],
+        [1.328125, -1.921875, 1.1640625, 0.3984375, 3.390625, 0.5],
+        [0.08203125, 0.390625, 2.00390625, -0.15625, 0.5, 1.0234375],
+    ];
+    let q = [-0.015625, 0.015625, 0.015625, 0.015625, 0.015625, -0.015625];
+    let d = [0.375, -0.84375, 0.03125, 0.0, 0.859375, 0.0];
+    (
+        Mat::from_fn(6, 6, |i, j| rows[i][j]),
+        Col::from_fn(6, |i| q[i]),
+        Col::from_fn(6, |i| d[i]),
+    )
+}
+
+/// Seed 30 of the f32 property test (a shrink): the exact path has four
+/// events, the last at `L = 325`, then an unbounded ray. f32 finds the event
+/// at `325` and the basis after it has condition about `7e4`, near f32's
+/// limit: the rate of `L`, `1.39e4`, is its column's largest entry and sat
+/// below the basis's noise (`1.47e4`), so the trace claimed `secondary_ray`
+/// (wrong: `L` rises along the ray). The rate stands twice above its own
+/// componentwise rounding (`7.5e3`): the precision cannot tell the two rays
+/// apart, and the trace now stops `ill_conditioned` there. Whatever each
+/// scale ends with must be certified or an honest `ill_conditioned` stop.
+#[test]
+fn f32_no_secondary_ray_where_the_rate_is_hidden_by_noise() {
+    let data = seed30();
+    // the exact path (the referee): an unbounded ray after the event at 325
+    let exact = exact_describe(&data);
+    assert!(exact.starts_with("unbounded_ray"), "{exact}");
+    let mut report = Vec::new();
+    for k in [0, -28] {
+        let problem = scaled::<f32>(&data, 2f64.powi(k));
+        let path = solve(&problem);
+        let cert = plcp::certify(&problem, &path);
+        report.push(format!(
+            "2^{k}: {} {}: {}",
+            path.status.as_str(),
+            cert.summary(),
+            describe(&path)
+        ));
+        let honest = cert.certified() || path.status == Status::IllConditioned;
+        assert!(
+            honest && path.status != Status::SecondaryRay,
+            "{}\nexact {exact}",
+            report.join("\n")
+        );
+    }
+    // the scaled data trace the whole path, ray included
+    assert!(
+        report[1].starts_with("2^-28: unbounded_ray"),
+        "{}",
+        report.join("\n")
+    );
+}
+
+/// The certificate checks a `secondary_ray` claim, not only the segments
+/// before it: seed 30's correct path (f64, an unbounded ray after `L = 325`)
+/// cut at its last breakpoint and relabelled `secondary_ray` has every
+/// segment right, and is rejected because the exact continuation rises on.
+/// The correct path and a true secondary ray stay certified.
+#[test]
+fn certificate_rejects_a_secondary_ray_where_the_path_goes_on() {
+    let problem = scaled::<f64>(&seed30(), 1.0);
+    let path = solve(&problem);
+    assert_eq!(path.status, Status::UnboundedRay, "{}", describe(&path));
+    assert!(plcp::certify(&problem, &path).certified());
+    let mut wrong = path.clone();
+    let last = wrong.segments.pop().expect("segments");
+    assert!(last.unbounded);
+    wrong.status = Status::SecondaryRay;
+    wrong.lambda_reached = last.lambda_from;
+    wrong.end = wrong
+        .at(last.lambda_from)
+        .expect("the cut path covers its end");
+    wrong.ray = None;
+    let cert = plcp::certify(&problem, &wrong);
+    let why = cert
+        .failure
+        .as_ref()
+        .map(|f| f.reason.clone())
+        .unwrap_or_default();
+    assert!(
+        why.contains("exact continuation") && why.contains("unbounded_ray"),
+        "{}",
+        cert.summary()
+    );
+    // a true secondary ray: w0 = 1 + z1, w1 = 1 - L - z0 (M skew, so
+    // monotone): w1 reaches zero at L = 1, z1 enters and rises with L held
+    // at 1, and no solution exists beyond
+    let m = Mat::from_fn(2, 2, |i, j| [[0.0, 1.0], [-1.0, 0.0]][i][j]);
+    let (q, d) = (
+        Col::from_fn(2, |i| [1.0, 1.0][i]),
+        Col::from_fn(2, |i| [0.0, -1.0][i]),
+    );
+    let skew = Plcp::new(m.as_ref(), q.as_ref(), d.as_ref()).unwrap();
+    let ray = solve(&skew);
+    let exact = plcp::exact::trace(&skew, &Settings::default()).unwrap();
+    assert_eq!(ray.status, Status::SecondaryRay, "{}", describe(&ray));
+    assert_eq!(exact.path.status, Status::SecondaryRay);
+    assert_eq!(ray.lambda_reached, 1.0);
+    let cert = plcp::certify(&skew, &ray);
+    assert!(cert.certified(), "{} {}", describe(&ray), cert.summary());
+}
+
 /// `solve_lcp` (Lemke's method on a plain LCP, no parameter) traces the
 /// equilibrated problem like every path: the P-matrix LCP scaled as a whole
 /// gives the same `z` (it ran on the raw data, where the tolerances' floors

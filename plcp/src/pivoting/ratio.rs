@@ -216,7 +216,7 @@ impl<'a, T: Scalar> Engine<'a, T> {
         // have lost digits): the rows are read again with refined values,
         // and those the refinement separates leave in their exact order
         if self.settings.near_ties == crate::settings::NearTies::Refine {
-            match self.read_near_tie(v, col, &tied, xnorm) {
+            match self.read_near_tie(v, col, &tied, xnorm, colmax) {
                 NearTie::Separated(r, theta) => return Some((r, theta)),
                 NearTie::Tied(rows) => tied = rows,
             }
@@ -253,7 +253,14 @@ impl<'a, T: Scalar> Engine<'a, T> {
     ///   precision cannot tell the breakpoints apart);
     /// * a larger bound leaves the order undecided: counted, and the trace
     ///   stops `ill_conditioned` naming the rows and the gap (`tie_alarm`).
-    fn read_near_tie(&self, v: Var, col: &Col<T>, tied: &[usize], xnorm: T) -> NearTie<T> {
+    fn read_near_tie(
+        &self,
+        v: Var,
+        col: &Col<T>,
+        tied: &[usize],
+        xnorm: T,
+        colmax: T,
+    ) -> NearTie<T> {
         let reads = self.refined_ratios(v, col, tied);
         let decided = |k: usize| reads[k].err.is_finite();
         let mut best: Option<usize> = None;
@@ -277,12 +284,14 @@ impl<'a, T: Scalar> Engine<'a, T> {
                     // lost digits can be off by a factor, e.g. 2^-43 read
                     // as 2^-42); the values are recomputed after the pivot
                     let r = tied[b];
-                    // (on a sparse basis by one solve with the updated
+                    // (on a sparse LU by one solve with the updated
                     // factor unless the pivot entry is small: a sparse
                     // refactorisation after every separated tie made a
                     // grid with symmetric contacts eight times slower)
-                    let small = col[r].abs() <= T::eps().sqrt() * col_max_abs(col);
-                    if small || !matches!(self.m, crate::matrix::MatrixRef::Sparse(_)) {
+                    let small = col[r].abs() <= T::eps().sqrt() * colmax;
+                    let sparse_lu =
+                        matches!(self.settings.basis, crate::settings::BasisKind::Sparse);
+                    if small || !sparse_lu {
                         self.refactor_after.set(true);
                     } else {
                         self.values_after.set(true);

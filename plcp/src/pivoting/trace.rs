@@ -178,6 +178,26 @@ impl<'a, T: Scalar> Engine<'a, T> {
                     }
                     return TraceEnd::UnboundedRay { driver, col, rate };
                 }
+                // not rising is a claim that the rate of L is zero or less:
+                // a positive rate that is not small against its column (the
+                // small-rate test above, sqrt(eps) max|col|) and still below
+                // the basis's noise means the noise exceeds sqrt(eps) of the
+                // column, and the precision cannot tell a rising ray from a
+                // secondary one (f32 at condition ~7e4: a rate of 1.39e4, the
+                // column's largest entry, against a tolerance of 1.47e4)
+                if rate > T::eps().sqrt() * colmax {
+                    self.col_buf = col;
+                    return TraceEnd::IllConditioned(format!(
+                        "no block at L = {:e} and a rate of L of {:e}, not small against \
+                         its column ({:e}) but below the basis's noise {:e}: {} cannot \
+                         tell an unbounded ray from a secondary ray",
+                        self.lambda.to_f64(),
+                        rate.to_f64(),
+                        colmax.to_f64(),
+                        rate_tol.to_f64(),
+                        T::NAME
+                    ));
+                }
                 return TraceEnd::SecondaryRay { driver, col, rate };
             };
             // the step; L is the path's independent variable, kept exactly as the

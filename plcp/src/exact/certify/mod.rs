@@ -15,6 +15,9 @@
 //!    there), or `L_max` for the last segment of a `reached` path (which needs
 //!    `L_max` in `I_k`), or `+inf` for an unbounded ray (which needs `I_k`
 //!    unbounded above).
+//! 4. A `secondary_ray` (the path claims it cannot go on) is continued
+//!    exactly from the last segment's basis ([`super::trace_from`]), which
+//!    must end on a secondary ray at the same exact `L`.
 //!
 //! Where the float path steps over events closer than its rounding (two
 //! variables reaching zero `1e-16` apart, taken as one degenerate breakpoint
@@ -44,7 +47,7 @@ mod interval;
 mod segment;
 
 use self::bases::Bases;
-use self::segment::{end_point, path_end, segment};
+use self::segment::{end_point, path_end, secondary_ray_end, segment};
 use super::{short, to_rational};
 use crate::path::Path;
 use crate::problem::Plcp;
@@ -235,10 +238,12 @@ fn run<T: Scalar>(
         pending: None,
     };
     if path.segments.is_empty() {
-        return end_point(path, &mut bases, &chain.start, cert);
+        end_point(path, &mut bases, &chain.start, cert)?;
+        return secondary_ray_end(problem, path, &chain.start);
     }
     for k in 0..path.segments.len() {
         segment(path, k, &mut bases, &mut chain, u_unique, cert)?;
     }
-    path_end(path, &chain.start)
+    path_end(path, &chain.start)?;
+    secondary_ray_end(problem, path, &chain.start)
 }

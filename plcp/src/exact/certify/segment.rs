@@ -387,3 +387,69 @@ fn check_values<T: Scalar>(
     }
     Ok(())
 }
+
+/// A `secondary_ray` status claims that the path cannot go on beyond where
+/// it ended: checked by continuing the path exactly
+/// ([`crate::exact::trace_from`]) from the last segment's basis, inside that
+/// segment (or from `L0` without segments). The exact continuation must end
+/// on a secondary ray at the same exact `L`. An f32 path whose last rate of
+/// `L` was hidden by the basis's noise claimed a secondary ray where the
+/// exact path is an unbounded ray, and the segments alone certified it.
+/// A problem the exact tracer does not take (order above
+/// [`crate::exact::EXACT_MAX_DIM`], a singular free block) fails here: the
+/// claim is not proven.
+pub(super) fn secondary_ray_end<T: Scalar>(
+    problem: &crate::problem::Plcp<T>,
+    path: &Path<T>,
+    end: &BigRational,
+) -> Result<(), Failure> {
+    if path.status != Status::SecondaryRay {
+        return Ok(());
+    }
+    let nseg = path.segments.len();
+    // enough pivots for the degenerate pivots of the last breakpoint and one
+    // more event beyond it: more means the claim is already wrong
+    let settings = crate::settings::Settings::<T> {
+        max_pivots: Some(2 * problem.dim() + 16),
+        ..Default::default()
+    };
+    let exact = match path.segments.last() {
+        Some(seg) => {
+            if seg.lambda_to < seg.lambda_from {
+                return Err(fail(
+                    nseg,
+                    "status secondary_ray after a falling segment: not checked exactly".into(),
+                ));
+            }
+            let two = T::one() + T::one();
+            let mid = seg.lambda_from + (seg.lambda_to - seg.lambda_from) / two;
+            crate::exact::trace_from(problem, &settings, &seg.basis, mid)
+        }
+        None => crate::exact::trace(problem, &settings),
+    };
+    let exact = exact.map_err(|e| {
+        fail(
+            nseg,
+            format!(
+                "status secondary_ray, not checked exactly: the exact continuation fails ({e})"
+            ),
+        )
+    })?;
+    if exact.path.status != Status::SecondaryRay || &exact.lambda_reached != end {
+        let at = if exact.path.status == Status::UnboundedRay {
+            "as L rises to infinity".to_string()
+        } else {
+            format!("at L = {}", short(&exact.lambda_reached))
+        };
+        return Err(fail(
+            nseg,
+            format!(
+                "status secondary_ray at L = {}, but the exact continuation from the last segment's basis ends {} {at}, with {} breakpoints from inside the last segment",
+                short(end),
+                exact.path.status.as_str(),
+                exact.breakpoints.len()
+            ),
+        ));
+    }
+    Ok(())
+}
