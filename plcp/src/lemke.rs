@@ -99,6 +99,7 @@ pub(crate) fn solve<T: Scalar>(
         }
         reintersect_breakpoints(&mut path);
         let ray_moved = reintersect_secondary_ray(&mut path, red.cond);
+        doubt_ray_on_reduction(&mut path, settings, red.cond);
         for b in &mut path.breakpoints {
             let seg = match b.segment {
                 0 => path.segments.first(),
@@ -536,4 +537,48 @@ pub fn solve_lcp<T: Scalar>(
         message,
         info,
     })
+}
+
+/// An `unbounded_ray` of the reduced path whose rate of `L` is within the
+/// noise of the reduced basis (`pivot_tol` times its condition estimate,
+/// clamped as the trace's noise) widened by the reduction's error
+/// ([`crate::tolerance::reduction_tie_factor`]), relative to the ray's
+/// largest component, is no evidence that `L` rises: a zero rate (the exact
+/// path ends on a secondary ray, 25/82) was read as `2.7e-10` against a
+/// direction of order one, and the ray's basis is infeasible exactly. The
+/// path stops `ill_conditioned` where the ray would start.
+fn doubt_ray_on_reduction<T: Scalar>(path: &mut Path<T>, settings: &Settings<T>, cond_f: f64) {
+    if path.status != Status::UnboundedRay {
+        return;
+    }
+    let Some(ray) = &path.ray else {
+        return;
+    };
+    let dirmax = ray
+        .dz
+        .iter()
+        .chain(ray.dw.iter())
+        .fold(ray.dlambda.abs(), |m, v| m.max(v.abs()))
+        .to_f64();
+    let factor = crate::tolerance::reduction_tie_factor::<T>(cond_f, settings.tie_tol_eps);
+    let noise = settings.pivot_tol_eps
+        * T::eps().to_f64()
+        * path.info.max_condition.clamp(1.0, 1e6)
+        * factor;
+    let rate = ray.dlambda.to_f64();
+    if rate.abs() > noise * dirmax {
+        return;
+    }
+    let start = ray.start.clone();
+    path.segments.retain(|s| !s.unbounded);
+    path.status = Status::IllConditioned;
+    path.message = format!(
+        "the ray from L = {:e} has a rate of L of {rate:e} against its largest component {dirmax:e}: within the noise {noise:e} of the reduced basis (condition {:e}, reduction factor {factor:e}), so L may not rise along it (a secondary ray); Wolfe's long form or a higher precision decides",
+        start.lambda.to_f64(),
+        path.info.max_condition
+    );
+    path.lambda_reached = start.lambda;
+    path.end = start;
+    path.ray = None;
+    path.final_basis = None;
 }

@@ -1850,12 +1850,12 @@ fn seeds_257_304_wolfe_residual_within_its_own_bases() {
     }
 }
 
-/// Open (the lead's `pivoting/trace.rs`, the rate test before a ray): a
-/// wrong success. Lemke on the Schur reduction claims `unbounded_ray` where
-/// the exact path ends on a secondary ray; `--certify` turns it
-/// `ill_conditioned`, plain `solve` does not.
+/// A wrong success, fixed: Lemke on the Schur reduction claimed
+/// `unbounded_ray` where the exact path ends on a secondary ray (a zero rate
+/// of `L` read as `2.7e-10` against a direction of order one); the ray is
+/// now doubted against the reduced basis's noise (`lemke.rs`
+/// `doubt_ray_on_reduction`) and the path stops `ill_conditioned`.
 #[test]
-#[ignore = "open: Lemke on the reduction reads a zero rate of L as 2.7e-10 and claims an unbounded ray (docs/limits.md)"]
 fn lemke_on_the_reduction_claims_no_ray_the_certificate_rejects() {
     let problem = secondary_ray_read_as_unbounded().plcp::<f64>();
     let wolfe = solve_with(&problem, Method::Wolfe).unwrap();
