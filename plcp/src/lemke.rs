@@ -98,6 +98,8 @@ pub(crate) fn solve<T: Scalar>(
             polish_segment(problem, seg);
         }
         reintersect_breakpoints(&mut path);
+        let ray_moved = reintersect_secondary_ray(&mut path, red.cond);
+        doubt_ray_on_reduction(&mut path, settings, red.cond);
         for b in &mut path.breakpoints {
             let seg = match b.segment {
                 0 => path.segments.first(),
@@ -132,6 +134,10 @@ pub(crate) fn solve<T: Scalar>(
             let du_dl = red.recover_du(&Col::zeros(n));
             let dz_part = red.recover_du(&ray.dz);
             ray.du = Col::from_fn(p, |i| (dz_part[i] - du_dl[i]) + du_dl[i] * ray.dlambda);
+            if ray_moved {
+                // the ray starts where the path ends, on the polished segment
+                ray.start = path.end.clone();
+            }
         }
         path.info.residual = res;
         path.info.solve_seconds = timer.elapsed().as_secs_f64();
@@ -209,6 +215,80 @@ fn reintersect_breakpoints<T: Scalar>(path: &mut Path<T>) {
             }
         }
     }
+}
+
+/// Moves the breakpoint of a secondary ray (the path's last, with no segment
+/// after it) to where its leaving variable reaches zero on the polished last
+/// segment; `lambda_reached` and the end follow. Returns whether it moved.
+///
+/// The reduced path's `L*` carries the reduction's error, which the reduced
+/// basis amplifies: seed 294 of `tests/mixed.rs` (`cond(F)` about 700, basis
+/// condition 1.5e7) put `L* = 16/11` at 8e-8 relative, where the polished
+/// segment's `w_3` was `-4.5e-8` (its line reaches zero at `16/11` to 1e-15).
+/// The move is taken up to `max(sqrt(eps), eps cond(F) max_condition)`
+/// relative (that error's size), only forward of the segment's start, and only
+/// where the rest of the segment's basic variables stay nonnegative there;
+/// else the reduced `L*` is kept.
+fn reintersect_secondary_ray<T: Scalar>(path: &mut Path<T>, cond_f: f64) -> bool {
+    if path.status != Status::SecondaryRay {
+        return false;
+    }
+    let lb = path.lambda_reached;
+    let Some(last) = path.segments.last() else {
+        return false;
+    };
+    if last.unbounded || last.lambda_to != lb || last.lambda_from >= lb {
+        return false;
+    }
+    let leaving: Vec<Var> = path
+        .breakpoints
+        .iter()
+        .filter(|b| b.lambda == lb)
+        .map(|b| b.leaving)
+        .collect();
+    let [leaving] = leaving[..] else {
+        return false;
+    };
+    let Some(i) = last.basis.iter().position(|&v| v == leaving) else {
+        return false;
+    };
+    let (v, dv) = match leaving {
+        Var::Z(_) => (last.z_from[i], last.dz[i]),
+        Var::W(_) => (last.w_from[i], last.dw[i]),
+        _ => return false,
+    };
+    if dv == T::zero() {
+        return false;
+    }
+    let l_new = last.lambda_from - v / dv;
+    let eps = T::eps().to_f64();
+    let cap = eps.sqrt().max(eps * cond_f * path.info.max_condition);
+    if !l_new.is_finite()
+        || l_new <= last.lambda_from
+        || (l_new - lb).abs().to_f64() > cap * lb.abs().to_f64().max(1.0)
+    {
+        return false;
+    }
+    // the other basic variables stay feasible at the new end (to rounding of
+    // the segment's scale)
+    let at = last.eval(l_new);
+    let scale =
+        at.z.iter()
+            .chain(at.w.iter())
+            .fold(T::one(), |m, x| if x.abs() > m { x.abs() } else { m });
+    let floor = -(T::from_f64(cap) * scale);
+    if at.z.iter().chain(at.w.iter()).any(|&x| x < floor) {
+        return false;
+    }
+    path.segments.last_mut().expect("checked").lambda_to = l_new;
+    for b in &mut path.breakpoints {
+        if b.lambda == lb {
+            b.lambda = l_new;
+        }
+    }
+    path.lambda_reached = l_new;
+    path.end.lambda = l_new;
+    true
 }
 
 /// Recomputes a segment of the reduced path on the unreduced system: with the
@@ -457,4 +537,48 @@ pub fn solve_lcp<T: Scalar>(
         message,
         info,
     })
+}
+
+/// An `unbounded_ray` of the reduced path whose rate of `L` is within the
+/// noise of the reduced basis (`pivot_tol` times its condition estimate,
+/// clamped as the trace's noise) widened by the reduction's error
+/// ([`crate::tolerance::reduction_tie_factor`]), relative to the ray's
+/// largest component, is no evidence that `L` rises: a zero rate (the exact
+/// path ends on a secondary ray, 25/82) was read as `2.7e-10` against a
+/// direction of order one, and the ray's basis is infeasible exactly. The
+/// path stops `ill_conditioned` where the ray would start.
+fn doubt_ray_on_reduction<T: Scalar>(path: &mut Path<T>, settings: &Settings<T>, cond_f: f64) {
+    if path.status != Status::UnboundedRay {
+        return;
+    }
+    let Some(ray) = &path.ray else {
+        return;
+    };
+    let dirmax = ray
+        .dz
+        .iter()
+        .chain(ray.dw.iter())
+        .fold(ray.dlambda.abs(), |m, v| m.max(v.abs()))
+        .to_f64();
+    let factor = crate::tolerance::reduction_tie_factor::<T>(cond_f, settings.tie_tol_eps);
+    let noise = settings.pivot_tol_eps
+        * T::eps().to_f64()
+        * path.info.max_condition.clamp(1.0, 1e6)
+        * factor;
+    let rate = ray.dlambda.to_f64();
+    if rate.abs() > noise * dirmax {
+        return;
+    }
+    let start = ray.start.clone();
+    path.segments.retain(|s| !s.unbounded);
+    path.status = Status::IllConditioned;
+    path.message = format!(
+        "the ray from L = {:e} has a rate of L of {rate:e} against its largest component {dirmax:e}: within the noise {noise:e} of the reduced basis (condition {:e}, reduction factor {factor:e}), so L may not rise along it (a secondary ray); Wolfe's long form or a higher precision decides",
+        start.lambda.to_f64(),
+        path.info.max_condition
+    );
+    path.lambda_reached = start.lambda;
+    path.end = start;
+    path.ray = None;
+    path.final_basis = None;
 }
