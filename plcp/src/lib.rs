@@ -141,11 +141,12 @@ pub fn solve<T: Scalar>(problem: &Plcp<T>, settings: &Settings<T>) -> Result<Pat
 
 /// [`solve`], then [`certify`] the path in exact rational arithmetic; the
 /// certificate is [`Info::certificate`]. A path that claims success
-/// (`reached`, `unbounded_ray`) but is rejected becomes `IllConditioned`
+/// (`reached`, `unbounded_ray`) or an end (`secondary_ray`) but is rejected
+/// becomes `IllConditioned`
 /// (its floats cannot be trusted in this precision: try a higher one, or
 /// [`exact::trace`]), `lambda_reached` falls back to the start of the failing
 /// segment, and the message gives the certificate's reason. So a success
-/// status from this function is a certified one. Costs one exact pivot per
+/// or `secondary_ray` status from this function is a certified one. Costs one exact pivot per
 /// basis change (`docs/certification.md`). With [`Settings::escalate`] (and
 /// [`Settings::escalate_exact`]) a rejected segment is first traced again in
 /// `fx128` (then exactly) from the certified one before it, and the new path
@@ -172,15 +173,17 @@ pub fn solve_certified<T: Scalar>(
     Ok(path)
 }
 
-/// A path that claims success but whose exact certificate rejects it becomes
-/// `IllConditioned` (its floats cannot be trusted in this precision), with the
+/// A path that claims success or a secondary ray but whose exact certificate
+/// rejects it becomes `IllConditioned` (its floats cannot be trusted in this precision), with the
 /// certificate's reason, and claims nothing beyond the start of the failing
 /// segment.
 fn reject_uncertified<T: Scalar>(path: &mut Path<T>, cert: &Certificate) {
     let Some(fail) = &cert.failure else {
         return;
     };
-    if !path.status.is_success() {
+    // a secondary ray is a claim too (no solution beyond it on this path),
+    // which the certificate checks exactly: rejected, it is withdrawn
+    if !path.status.is_success() && path.status != Status::SecondaryRay {
         path.message = format!(
             "{} (exact certification of the traced part: rejected at segment {}: {})",
             path.message, fail.segment, fail.reason
@@ -208,4 +211,44 @@ fn reject_uncertified<T: Scalar>(path: &mut Path<T>, cert: &Certificate) {
         }
     }
     path.ray = None;
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use faer::{col, mat};
+
+    /// A `secondary_ray` the certificate rejects is withdrawn like a
+    /// success: the unbounded ray of `w0 = 1 - L` (then `z0` rises) cut at
+    /// its breakpoint and relabelled `secondary_ray` becomes
+    /// `ill_conditioned`; the true path stays as it is.
+    #[test]
+    fn a_rejected_secondary_ray_is_withdrawn() {
+        let m = mat![[2.0, 1.0], [1.0, 2.0]];
+        let problem = Plcp::new(
+            m.as_ref(),
+            col![1.0, 1.0].as_ref(),
+            col![-1.0, -0.5].as_ref(),
+        )
+        .unwrap();
+        let path = solve(&problem, &Settings::default()).unwrap();
+        assert_eq!(path.status, Status::UnboundedRay);
+        let mut right = path.clone();
+        reject_uncertified(&mut right, &certify(&problem, &path));
+        assert_eq!(right.status, Status::UnboundedRay);
+        let mut wrong = path.clone();
+        let last = wrong.segments.pop().unwrap();
+        wrong.status = Status::SecondaryRay;
+        wrong.lambda_reached = last.lambda_from;
+        wrong.ray = None;
+        let cert = certify(&problem, &wrong);
+        assert!(!cert.certified(), "{}", cert.summary());
+        reject_uncertified(&mut wrong, &cert);
+        assert_eq!(wrong.status, Status::IllConditioned, "{}", wrong.message);
+        assert!(
+            wrong.message.contains("exact continuation"),
+            "{}",
+            wrong.message
+        );
+    }
 }
