@@ -7,6 +7,24 @@ use faer::linalg::solvers::Solve;
 use faer::reborrow::ReborrowMut;
 use faer::{Col, Mat, MatRef};
 
+/// The entries of a contiguous column (an owned `Col` always is): the
+/// kernels read and write columns over slices, since faer's checked
+/// indexing costs an assert per entry.
+pub(crate) fn col_slice<T: Scalar>(c: &Col<T>) -> &[T] {
+    c.as_ref()
+        .try_as_col_major()
+        .expect("a column is contiguous")
+        .as_slice()
+}
+
+/// The entries of a contiguous column, mutable ([`col_slice`]).
+pub(crate) fn col_slice_mut<T: Scalar>(c: &mut Col<T>) -> &mut [T] {
+    c.as_mut()
+        .try_as_col_major_mut()
+        .expect("a column is contiguous")
+        .as_slice_mut()
+}
+
 /// `A^{-1}` by LU with partial pivoting, with the largest and smallest pivot
 /// magnitudes of `U`; `None` if a pivot is zero or non-finite.
 /// On faer's global parallelism from order 645 ([`inverse_flops`]), on the

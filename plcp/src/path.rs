@@ -1,5 +1,6 @@
 //! The answer: a piecewise-affine path of solutions, its breakpoints, and how well it is known.
 
+use crate::linalg::{col_slice, col_slice_mut};
 use crate::scalar::Scalar;
 use faer::Col;
 
@@ -172,26 +173,10 @@ pub struct Segment<T: Scalar> {
     pub du: Col<T>,
 }
 
-/// The entries of an owned (contiguous) column.
-fn entries<T: Scalar>(c: &Col<T>) -> &[T] {
-    c.as_ref()
-        .try_as_col_major()
-        .expect("an owned column is contiguous")
-        .as_slice()
-}
-
-/// The entries of an owned (contiguous) column, mutable.
-fn entries_mut<T: Scalar>(c: &mut Col<T>) -> &mut [T] {
-    c.as_mut()
-        .try_as_col_major_mut()
-        .expect("an owned column is contiguous")
-        .as_slice_mut()
-}
-
 fn affine<T: Scalar>(from: &Col<T>, slope: &Col<T>, dl: T) -> Col<T> {
     // over slices: faer's checked indexing (an assert per entry) was most
     // of an evaluation, which the end measure makes twice a path
-    let (from, slope) = (entries(from), entries(slope));
+    let (from, slope) = (col_slice(from), col_slice(slope));
     Col::from_fn(from.len(), |i| from[i] + slope[i] * dl)
 }
 
@@ -226,9 +211,9 @@ impl<T: Scalar> Segment<T> {
                 visible_max(z.iter().copied()),
                 visible_max(w.iter().copied()),
             );
-            let (zf, dz) = (entries(&self.z_from), entries(&self.dz));
-            let (wf, dw) = (entries(&self.w_from), entries(&self.dw));
-            let (zs, ws) = (entries_mut(&mut z), entries_mut(&mut w));
+            let (zf, dz) = (col_slice(&self.z_from), col_slice(&self.dz));
+            let (wf, dw) = (col_slice(&self.w_from), col_slice(&self.dw));
+            let (zs, ws) = (col_slice_mut(&mut z), col_slice_mut(&mut w));
             for i in 0..zs.len() {
                 zs[i] = rule.z(zs[i], zf[i], dz[i]);
                 ws[i] = rule.w(ws[i], wf[i], dw[i]);

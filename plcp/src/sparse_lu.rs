@@ -4,6 +4,7 @@
 //! basis ([`crate::basis`]) refactorises with it, and [`crate::matrix::Csc`]
 //! estimates its condition with it, so the matrix does not know the basis.
 
+use crate::linalg::col_slice_mut;
 use crate::scalar::Scalar;
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::perm::PermRef;
@@ -125,7 +126,7 @@ impl<T: Scalar> SparseFactor<T> {
     /// single-column solves, in their order: the same results.
     pub(crate) fn solve_in_place(&self, x: &mut Col<T>) {
         debug_assert_eq!(x.nrows(), self.dim);
-        let xo = col_slice(x);
+        let xo = col_slice_mut(x);
         // in the factors' row order in a scratch vector (one gather), the
         // solution scattered back through the column order (one pass)
         let mut xs: Vec<T> = self.row_fwd.iter().map(|&p| xo[p]).collect();
@@ -239,7 +240,7 @@ impl<T: Scalar> SparseFactor<T> {
         let mut tmp = Vec::with_capacity(self.dim);
         Self::permute(x, &self.col_fwd, &mut tmp);
         if self.dim > 0 {
-            self.transpose_sweep1(col_slice(x));
+            self.transpose_sweep1(col_slice_mut(x));
         }
         Self::permute(x, &self.row_inv, &mut tmp);
     }
@@ -366,14 +367,6 @@ impl<T: Scalar> SparseFactor<T> {
                 |x| self.solve_transpose_in_place(x),
             )
     }
-}
-
-/// The entries of a (contiguous) column.
-pub(crate) fn col_slice<T: Scalar>(c: &mut Col<T>) -> &mut [T] {
-    c.as_mut()
-        .try_as_col_major_mut()
-        .expect("a column is contiguous")
-        .as_slice_mut()
 }
 
 /// Hager's estimate of `||A^{-1}||_1` from solves with `A` and `A'` (Higham,

@@ -22,10 +22,11 @@
 //! almost always within a factor of a few of the truth), five solves at most.
 
 use super::{identity_row, BasisFactor, InverseRows};
+use crate::linalg::col_slice_mut;
 use crate::matrix::MatrixRef;
 use crate::path::Var;
 use crate::scalar::Scalar;
-use crate::sparse_lu::{col_slice, SparseFactor};
+use crate::sparse_lu::SparseFactor;
 use crate::tolerance::ROW_NOISE_EPS;
 use core::cell::RefCell;
 use faer::{Col, Mat};
@@ -306,8 +307,8 @@ impl<T: Scalar> BasisFactor<T> for SparseLu<T> {
     }
 
     fn solve2(&self, mut x: Col<T>, mut y: Col<T>) -> (Col<T>, Col<T>) {
-        let xs = col_slice(&mut x);
-        let ys = col_slice(&mut y);
+        let xs = col_slice_mut(&mut x);
+        let ys = col_slice_mut(&mut y);
         if let Some(f) = &self.factor {
             f.solve2_in_place(xs, ys, &mut self.solve2_tmp.borrow_mut());
         }
@@ -400,7 +401,7 @@ impl<T: Scalar> BasisFactor<T> for SparseLu<T> {
                             v
                         }),
                     };
-                    let out = col_slice(&mut row);
+                    let out = col_slice_mut(&mut row);
                     // entries at the rounding level of the row are zeros of the
                     // exact inverse (the lexicographic rule compares them exactly)
                     let tol = T::from_f64(ROW_NOISE_EPS) * T::eps() * big;

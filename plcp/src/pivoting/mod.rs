@@ -37,6 +37,7 @@ pub(crate) use phases::{finish_lean, finish_path, run_path, start_phase};
 use crate::basis::{
     apply, var_column, var_column_into, BasisFactor, BlockInverse, DenseInverse, SparseLu,
 };
+use crate::linalg::{col_slice, col_slice_mut};
 use crate::matrix::MatrixRef;
 use crate::path::{Breakpoint, Point, Residual, Segment, Var};
 use crate::scalar::Scalar;
@@ -229,22 +230,6 @@ fn col_max_abs<T: Scalar>(c: &Col<T>) -> T {
         Some(c) => max_abs(c.as_slice()),
         None => c.iter().fold(T::zero(), |a, v| a.max(v.abs())),
     }
-}
-
-/// The entries of a (contiguous) column.
-fn col_slice<T: Scalar>(c: &Col<T>) -> &[T] {
-    c.as_ref()
-        .try_as_col_major()
-        .expect("a column is contiguous")
-        .as_slice()
-}
-
-/// The entries of a (contiguous) column, mutable.
-fn col_slice_mut<T: Scalar>(c: &mut Col<T>) -> &mut [T] {
-    c.as_mut()
-        .try_as_col_major_mut()
-        .expect("a column is contiguous")
-        .as_slice_mut()
 }
 
 fn is_comp(v: Var) -> bool {

@@ -10,21 +10,7 @@ mod tests;
 
 use pending::{column_slice, dot_slice, FlushPass, Pending};
 
-/// The entries of an owned column.
-fn slice_of<T: Scalar>(c: &Col<T>) -> &[T] {
-    c.as_ref()
-        .try_as_col_major()
-        .expect("an owned column is contiguous")
-        .as_slice()
-}
-
-/// The entries of an owned column, mutable.
-fn slice_mut_of<T: Scalar>(c: &mut Col<T>) -> &mut [T] {
-    c.as_mut()
-        .try_as_col_major_mut()
-        .expect("an owned column is contiguous")
-        .as_slice_mut()
-}
+use crate::linalg::{col_slice, col_slice_mut};
 
 /// Column `j` of a column-major matrix view.
 fn col_of<T: Scalar>(m: MatRef<'_, T>, j: usize) -> &[T] {
@@ -231,7 +217,7 @@ impl<T: Scalar> BlockInverse<T> {
                 let mut ym = self.ym.borrow_mut();
                 let sinv = sinv.as_ref().submatrix(0, 0, k, k);
                 match self.par(k * k) {
-                    faer::Par::Seq => gemv::gemv(sinv, ar, &mut slice_mut_of(&mut ym)[..k]),
+                    faer::Par::Seq => gemv::gemv(sinv, ar, &mut col_slice_mut(&mut ym)[..k]),
                     _ => matvec_into_mut(
                         sinv,
                         faer::ColRef::from_slice(ar),
@@ -287,7 +273,7 @@ impl<T: Scalar> BlockInverse<T> {
         };
         if let (Some(lo), Some(hi)) = (acc_lo, acc_hi) {
             let mut ym = self.ym.borrow_mut();
-            for ((y, &l), &h) in slice_mut_of(&mut ym)[..k].iter_mut().zip(&*lo).zip(&*hi) {
+            for ((y, &l), &h) in col_slice_mut(&mut ym)[..k].iter_mut().zip(&*lo).zip(&*hi) {
                 *y = l + h;
             }
         }
@@ -305,7 +291,7 @@ impl<T: Scalar> BlockInverse<T> {
         let k = self.k;
         let mut ar = self.ar.borrow_mut();
         ar.clear();
-        let a_s = slice_of(a);
+        let a_s = col_slice(a);
         ar.extend(self.rows[..k].iter().map(|&i| a_s[i]));
         self.flush(Some(&ar));
         self.refined.set(false);
@@ -479,15 +465,15 @@ impl<T: Scalar> BasisFactor<T> for BlockInverse<T> {
         }
         let g = self.g.as_ref().subcols(0, k);
         match self.par(self.dim * k) {
-            faer::Par::Seq => gemv::gemv(g, &slice_of(&ym)[..k], slice_mut_of(&mut gy)),
+            faer::Par::Seq => gemv::gemv(g, &col_slice(&ym)[..k], col_slice_mut(&mut gy)),
             _ => matvec_into(g, ym.as_ref().subrows(0, k), &mut gy),
         }
         if out.nrows() != self.dim {
             *out = Col::zeros(self.dim);
         }
         // (over slices: the same operations without faer's index checks)
-        let (a, gy, ym) = (slice_of(a), slice_of(&gy), slice_of(&ym));
-        for (o, slot) in slice_mut_of(out).iter_mut().zip(&self.slots) {
+        let (a, gy, ym) = (col_slice(a), col_slice(&gy), col_slice(&ym));
+        for (o, slot) in col_slice_mut(out).iter_mut().zip(&self.slots) {
             *o = match *slot {
                 Slot::Matrix(b) => ym[b],
                 Slot::Identity(i) => a[i] - gy[i],
@@ -521,7 +507,7 @@ impl<T: Scalar> BasisFactor<T> for BlockInverse<T> {
         {
             let (ra, rb) = rhs.as_mut().split_at_col_mut(1);
             let (ra, rb) = (column_slice(ra, 0), column_slice(rb, 0));
-            let (a, b) = (slice_of(a), slice_of(b));
+            let (a, b) = (col_slice(a), col_slice(b));
             for ((ea, eb), &i) in ra.iter_mut().zip(rb.iter_mut()).zip(&self.rows[..k]) {
                 *ea = a[i];
                 *eb = b[i];
@@ -547,8 +533,8 @@ impl<T: Scalar> BasisFactor<T> for BlockInverse<T> {
         }
         let (ga, gb) = (col_of(prod.as_ref(), 0), col_of(prod.as_ref(), 1));
         let (ya, yb) = (col_of(y.as_ref(), 0), col_of(y.as_ref(), 1));
-        let (a, b) = (slice_of(a), slice_of(b));
-        let (oa, ob) = (slice_mut_of(out_a), slice_mut_of(out_b));
+        let (a, b) = (col_slice(a), col_slice(b));
+        let (oa, ob) = (col_slice_mut(out_a), col_slice_mut(out_b));
         for ((sa, sb), slot) in oa.iter_mut().zip(ob.iter_mut()).zip(&self.slots) {
             match *slot {
                 Slot::Matrix(c) => {
@@ -613,8 +599,8 @@ impl<T: Scalar> BasisFactor<T> for BlockInverse<T> {
         {
             let (ry, rx) = rhs.as_mut().split_at_col_mut(1);
             let (ry, rx) = (column_slice(ry, 0), column_slice(rx, 0));
-            let xs = slice_of(x);
-            ry[..k].copy_from_slice(&slice_of(&ym)[..k]);
+            let xs = col_slice(x);
+            ry[..k].copy_from_slice(&col_slice(&ym)[..k]);
             for (e, &r) in rx.iter_mut().zip(&self.bpos[..k]) {
                 *e = xs[r];
             }
@@ -633,8 +619,8 @@ impl<T: Scalar> BasisFactor<T> for BlockInverse<T> {
         // over slices (the same operations without faer's index checks:
         // three passes of length `dim` a pivot)
         let (gy, gx) = (col_of(prod.as_ref(), 0), col_of(prod.as_ref(), 1));
-        let (a, x, ym) = (slice_of(a), slice_of(x), slice_of(&ym));
-        let (sol, bx) = (slice_mut_of(sol), slice_mut_of(bx));
+        let (a, x, ym) = (col_slice(a), col_slice(x), col_slice(&ym));
+        let (sol, bx) = (col_slice_mut(sol), col_slice_mut(bx));
         bx.copy_from_slice(&gx[..dim]);
         for ((s, slot), &xr) in sol.iter_mut().zip(&self.slots).zip(x) {
             match *slot {
@@ -686,9 +672,9 @@ impl<T: Scalar> BasisFactor<T> for BlockInverse<T> {
         // (over slices, in the order of the indexed loops it replaces: faer's
         // checked indexing was most of the end-of-path condition estimate)
         let mut pi = Col::<T>::zeros(self.dim);
-        let c = slice_of(c);
+        let c = col_slice(c);
         {
-            let pi = slice_mut_of(&mut pi);
+            let pi = col_slice_mut(&mut pi);
             for (slot, &cr) in self.slots.iter().zip(c) {
                 if let Slot::Identity(i) = *slot {
                     pi[i] = cr;
@@ -696,7 +682,7 @@ impl<T: Scalar> BasisFactor<T> for BlockInverse<T> {
             }
         }
         let t: Vec<T> = {
-            let pi = slice_of(&pi);
+            let pi = col_slice(&pi);
             (0..k)
                 .map(|b| {
                     let mut v = c[self.bpos[b]];
@@ -710,7 +696,7 @@ impl<T: Scalar> BasisFactor<T> for BlockInverse<T> {
                 })
                 .collect()
         };
-        let pi_s = slice_mut_of(&mut pi);
+        let pi_s = col_slice_mut(&mut pi);
         for (a, &row) in self.rows[..k].iter().enumerate() {
             let mut v = T::zero();
             for (&s, tb) in col_of(sinv.as_ref(), a)[..k].iter().zip(&t) {
@@ -736,7 +722,7 @@ impl<T: Scalar> BasisFactor<T> for BlockInverse<T> {
         self.flush(None);
         let k = self.k;
         let ym: Vec<T> = {
-            let y = slice_of(y);
+            let y = col_slice(y);
             self.bpos[..k].iter().map(|&r| y[r]).collect()
         };
         match (self.slots[r], identity_row(p, entering)) {
