@@ -166,6 +166,7 @@ fn settings_fx128<T: Scalar>(s: &Settings<T>, warm: Option<Vec<Var>>) -> Setting
         escalate: false,
         escalate_exact: false,
         threads: s.threads,
+        principal: s.principal,
     }
 }
 

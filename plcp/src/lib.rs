@@ -72,6 +72,7 @@ pub mod matrix;
 pub mod observe;
 mod path;
 mod pivoting;
+mod principal;
 mod problem;
 #[cfg(feature = "cli")]
 pub mod progress;

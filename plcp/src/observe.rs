@@ -308,7 +308,11 @@ where
     O: Observer<T> + 'static,
 {
     let shared = Rc::new(RefCell::new(observer));
-    let in_engine = !(settings.method == Method::Lemke && problem.free() > 0);
+    // the principal-pivoting fast path's answer, if it gives one, is handed
+    // to the observer after the fact (the path `crate::solve` returns, the
+    // same bits), as a path on a Schur reduction is
+    let mut fast = crate::trace::principal_measured(problem, settings);
+    let in_engine = fast.is_none() && !(settings.method == Method::Lemke && problem.free() > 0);
     let (p, n) = (problem.free(), problem.n());
     let unscale = if settings.scaling && in_engine {
         let eq = crate::scaling::Equilibration::ruiz(problem, 8);
@@ -338,7 +342,13 @@ where
     } else {
         None
     };
-    let result = crate::solve(problem, settings);
+    let result = match fast.take() {
+        Some(mut path) => {
+            path.info.path_bytes = path_bytes(&path);
+            Ok(path)
+        }
+        None => crate::solve(problem, settings),
+    };
     let active = if in_engine {
         ACTIVE
             .with(|a| a.replace(outer))
@@ -387,7 +397,7 @@ where
             }
         }
         None => {
-            // after the fact: Lemke on a Schur reduction
+            // after the fact: Lemke on a Schur reduction, or the fast path
             let mut obs = shared.borrow_mut();
             let mut stop_at = None;
             for (k, seg) in path.segments.iter().enumerate() {
@@ -545,6 +555,13 @@ pub(crate) fn emitted_ends<T: Scalar>() -> Option<crate::path::Residual> {
             .and_then(|b| b.downcast_ref::<Active<T>>())
             .and_then(|active| active.ends)
     })
+}
+
+/// True while [`solve_observed`] runs on this thread (any scalar type): the
+/// principal-pivoting fast path ([`crate::principal`]) then leaves the trace
+/// to the engine, whose recording site hands segments to the observer.
+pub(crate) fn observing() -> bool {
+    ACTIVE.with(|a| a.borrow().is_some())
 }
 
 thread_local! {

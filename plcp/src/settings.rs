@@ -184,6 +184,16 @@ pub struct Settings<T: Scalar> {
     /// n = 700, `Some(2)` does). The arithmetic of the passes, and so the
     /// path, is the same either way.
     pub threads: Option<usize>,
+    /// Let the principal-pivoting fast path ([`crate::principal`]) trace a
+    /// dense standard-form `f64` problem whose start `q + L0 d` is strictly
+    /// positive, to a finite `L_max`, with the default basis
+    /// ([`BasisKind::Block`]) and no warm basis. It hands the problem back to
+    /// the general engine (from the start) at any tie, zero step, small pivot,
+    /// condition above `1e8` or residual it cannot vouch for, so its paths
+    /// are the engine's up to rounding. `info.method` says `"lemke
+    /// (principal)"` where it answered. Default `true`; `false`: always the
+    /// general engine.
+    pub principal: bool,
 }
 
 /// The representation of the basis inverse (`src/basis.rs`).
@@ -221,6 +231,7 @@ impl<T: Scalar> Default for Settings<T> {
             escalate: false,
             escalate_exact: false,
             threads: None,
+            principal: true,
         }
     }
 }

@@ -98,6 +98,13 @@ fn trace_unguarded<T: Scalar>(
         }
     }
     let timer = std::time::Instant::now();
+    // the principal-pivoting fast path, on the data as given (its tolerances
+    // are relative to each pivot's and row's own terms; a badly scaled
+    // problem shows in its condition bound and goes to the engine, which
+    // equilibrates)
+    if let Some(path) = principal_measured(problem, settings) {
+        return Ok(path);
+    }
     // no scales (none asked for, all one, or the scaled data overflow): the
     // trace runs on `problem` itself
     let eq = settings
@@ -135,4 +142,54 @@ fn trace_unguarded<T: Scalar>(
     measure_scaled(problem, &mut path, both_ends, RowScales::Scaled(&eq.rows));
     path.info.solve_seconds = timer.elapsed().as_secs_f64();
     Ok(path)
+}
+
+/// The fast path's answer ([`principal`]) measured on the problem as every
+/// path is, if its residual passes the guard (`sqrt(eps)`); `None` where the
+/// kernel declines or the guard would fail it (the engine then traces).
+/// [`crate::observe::solve_observed`] calls this before it starts its
+/// observer, and hands the path to the observer after the fact.
+pub(crate) fn principal_measured<T: Scalar>(
+    problem: &Plcp<T>,
+    settings: &Settings<T>,
+) -> Option<Path<T>> {
+    settings.validate(problem.n()).ok()?;
+    let timer = std::time::Instant::now();
+    let mut path = principal(problem, settings)?;
+    measure_scaled(problem, &mut path, false, RowScales::Ones);
+    let worst = path.info.residual.worst();
+    if worst.is_nan() || worst > T::eps().to_f64().sqrt() {
+        return None;
+    }
+    path.info.solve_seconds = timer.elapsed().as_secs_f64();
+    Some(path)
+}
+
+/// The path by [`crate::principal`] where the settings allow it and the
+/// kernel answers: Lemke's method asked for, standard form, dense `M`, `f64`,
+/// the default block basis, no warm basis.
+fn principal<T: Scalar>(problem: &Plcp<T>, settings: &Settings<T>) -> Option<Path<T>> {
+    if !settings.principal
+        || settings.method != Method::Lemke
+        || problem.free() > 0
+        || settings.warm_basis.is_some()
+        || settings.basis != crate::settings::BasisKind::Block
+        || T::NAME != "f64"
+    {
+        return None;
+    }
+    let crate::matrix::MatrixRef::Dense(m) = problem.matrix() else {
+        return None;
+    };
+    let max_pivots = settings.max_pivots.unwrap_or(50 * problem.n() + 1000);
+    crate::principal::trace(
+        m,
+        problem.q(),
+        problem.d(),
+        problem.lambda0(),
+        problem.lambda_max(),
+        max_pivots,
+        "lemke (principal)",
+    )
+    .ok()
 }
