@@ -13,13 +13,16 @@
 //! z_B = -G (q_B + L d_B),   w = q + L d + M_{:,B} z_B   (w_B = 0),
 //! ```
 //!
-//! and their slopes the same with `d` alone: `O(k^2 + n k)` a pivot, no
-//! factorisation of the whole basis, no refinement, no lexicographic rows.
+//! and their slopes the same with `d` alone: `O(k^2 + n k)` a pivot (faer's
+//! products over `G` and a copy of `M_{:,B}`), no factorisation of the whole
+//! basis, no refinement, no lexicographic rows.
 //!
 //! The kernel decides only what it decides with margin. It hands the problem
-//! back (`None`, before any segment is handed out) on: a start that is not
+//! back (an `Err` saying why, before any segment is handed out) on: an order
+//! above [`crate::tolerance::PRINCIPAL_MAX_N`]; a start that is not
 //! strictly feasible; two ratios within [`crate::tolerance::PRINCIPAL_TIE_EPS`]
-//! of each other, or a ratio that close to zero or to `L_max`; a pivot (the
+//! of each other, or a ratio that close to zero or to `L_max`; a blocking
+//! rate within that many `eps` of the segment's largest rate; a pivot (the
 //! Schur complement `s = M_jj - M_jB G M_Bj` of an addition, `G_jj` of a
 //! removal) not positive beyond the rounding of its terms, so `L` never turns;
 //! the condition bound of the complementary basis times `eps` above
@@ -50,6 +53,14 @@ struct Kernel<'a, T: Scalar> {
     pos: Vec<usize>,
     /// `G = S^-1`, column-major with stride `n` (`G[a + b n]`).
     g: Vec<T>,
+    /// `M_{:,B}`: column `a` is `M`'s column `set[a]` (stride `n`), for the
+    /// blocked product of the values
+    mb: Vec<T>,
+    /// work: `[q_B + L d_B | d_B]` and `[z_B | dz_B]` (`k x 2`, stride `n`),
+    /// `[w | dw]` (`n x 2`)
+    rhs2: Vec<T>,
+    zb2: Vec<T>,
+    w2: Vec<T>,
     /// values and slopes: `z` (all `n`, zero off `B`), `w` (zero on `B`)
     z: Vec<T>,
     dz: Vec<T>,
@@ -129,6 +140,10 @@ pub(crate) fn trace<T: Scalar>(
         set: Vec::with_capacity(n),
         pos: vec![usize::MAX; n],
         g: Vec::new(),
+        mb: Vec::new(),
+        rhs2: vec![T::zero(); 2 * n],
+        zb2: vec![T::zero(); 2 * n],
+        w2: vec![T::zero(); 2 * n],
         z: vec![T::zero(); n],
         dz: vec![T::zero(); n],
         w: vec![T::zero(); n],
@@ -160,18 +175,21 @@ pub(crate) fn trace<T: Scalar>(
     loop {
         // ratio test: the smallest step of L to a zero of a basic variable
         let (mut best, mut second, mut arg) = (T::max_value(), T::max_value(), usize::MAX);
+        let (mut rate_max, mut rate_arg) = (T::zero(), T::zero());
         for i in 0..n {
             let (x, dx) = if k.pos[i] != usize::MAX {
                 (k.z[i], k.dz[i])
             } else {
                 (k.w[i], k.dw[i])
             };
+            rate_max = rate_max.max(dx.abs());
             if dx < T::zero() {
                 let t = x / -dx;
                 if t < best {
                     second = best;
                     best = t;
                     arg = i;
+                    rate_arg = dx;
                 } else if t < second {
                     second = t;
                 }
@@ -209,8 +227,14 @@ pub(crate) fn trace<T: Scalar>(
                 final_basis,
             });
         }
-        // too close to L_max, to zero, or to the next ratio: not decided here
-        if (best - room).abs() <= window || best <= window || second - best <= window {
+        // too close to L_max, to zero, or to the next ratio, or a blocking
+        // rate that may be rounding (small against the segment's largest):
+        // not decided here
+        if (best - room).abs() <= window
+            || best <= window
+            || second - best <= window
+            || rate_arg.abs() <= tie * rate_max
+        {
             return Err(Decline::Tie);
         }
         if breakpoints.len() >= max_pivots {
@@ -239,6 +263,36 @@ pub(crate) fn trace<T: Scalar>(
     }
 }
 
+/// `k x c` view of `buf` (column-major, stride `n`).
+fn view<T: Scalar>(buf: &[T], k: usize, c: usize, n: usize) -> MatRef<'_, T> {
+    MatRef::from_column_major_slice_with_stride(&buf[..(c.max(1) - 1) * n + k], k, c, n)
+}
+
+fn view_mut<T: Scalar>(buf: &mut [T], k: usize, c: usize, n: usize) -> faer::MatMut<'_, T> {
+    faer::MatMut::from_column_major_slice_with_stride_mut(
+        &mut buf[..(c.max(1) - 1) * n + k],
+        k,
+        c,
+        n,
+    )
+}
+
+/// `dst (+)= alpha a b` on the calling thread.
+fn gemm<T: Scalar>(
+    dst: faer::MatMut<'_, T>,
+    add: bool,
+    a: MatRef<'_, T>,
+    b: MatRef<'_, T>,
+    alpha: T,
+) {
+    let accum = if add {
+        faer::Accum::Add
+    } else {
+        faer::Accum::Replace
+    };
+    faer::linalg::matmul::matmul(dst, accum, a, b, alpha, faer::Par::Seq);
+}
+
 /// `x > bound`, false where either is NaN (a NaN declines).
 fn clearly_above<T: Scalar>(x: T, bound: T) -> bool {
     x.partial_cmp(&bound) == Some(core::cmp::Ordering::Greater)
@@ -254,50 +308,54 @@ impl<T: Scalar> Kernel<'_, T> {
         let (n, kk) = (self.n, self.set.len());
         if self.g.is_empty() {
             self.g = vec![T::zero(); n * n];
+            self.mb = vec![T::zero(); n * n];
         }
-        // u = M_Bj, v = M_jB; gu = G u, vg = v' G
+        // u = M_Bj, v = M_jB; gu = G u, vg = G' v
         for a in 0..kk {
             self.u[a] = self.m(self.set[a], j);
             self.v[a] = self.m(j, self.set[a]);
         }
-        let (mut gu, mut vg) = (std::mem::take(&mut self.gu), std::mem::take(&mut self.vg));
-        gu[..kk].iter_mut().for_each(|x| *x = T::zero());
-        for b in 0..kk {
-            let gcol = &self.g[b * n..b * n + kk];
-            let ub = self.u[b];
-            let mut acc = T::zero();
-            for a in 0..kk {
-                gu[a] += gcol[a] * ub;
-                acc += self.v[a] * gcol[a];
-            }
-            vg[b] = acc;
-        }
+        let g = view(&self.g, kk, kk, n);
+        gemm(
+            view_mut(&mut self.gu, kk, 1, n),
+            false,
+            g,
+            view(&self.u, kk, 1, n),
+            T::one(),
+        );
+        gemm(
+            view_mut(&mut self.vg, kk, 1, n),
+            false,
+            g.transpose(),
+            view(&self.v, kk, 1, n),
+            T::one(),
+        );
         let mjj = self.m(j, j);
         let (mut vgu, mut mag) = (T::zero(), mjj.abs());
         for a in 0..kk {
-            let t = self.v[a] * gu[a];
+            let t = self.v[a] * self.gu[a];
             vgu += t;
             mag += t.abs();
         }
         let s = mjj - vgu;
         if !clearly_above(s, T::from_f64(PRINCIPAL_PIVOT_EPS) * T::eps() * mag) {
-            (self.gu, self.vg) = (gu, vg);
             return Err(Decline::SmallPivot);
         }
         let inv = T::one() / s;
+        // G + gu vg' / s, bordered by -gu / s, -vg' / s and 1 / s
+        gemm(
+            view_mut(&mut self.g, kk, kk, n),
+            true,
+            view(&self.gu, kk, 1, n),
+            view(&self.vg, kk, 1, n).transpose(),
+            inv,
+        );
         for b in 0..kk {
-            let f = vg[b] * inv;
-            let gcol = &mut self.g[b * n..b * n + kk];
-            for a in 0..kk {
-                gcol[a] += gu[a] * f;
-            }
-            self.g[b * n + kk] = -f;
-        }
-        for a in 0..kk {
-            self.g[kk * n + a] = -gu[a] * inv;
+            self.g[b * n + kk] = -(self.vg[b] * inv);
+            self.g[kk * n + b] = -(self.gu[b] * inv);
         }
         self.g[kk * n + kk] = inv;
-        (self.gu, self.vg) = (gu, vg);
+        self.mb[kk * n..kk * n + n].copy_from_slice(&self.cols[j][..n]);
         self.pos[j] = kk;
         self.set.push(j);
         self.after_pivot()
@@ -318,14 +376,15 @@ impl<T: Scalar> Kernel<'_, T> {
             self.u[a] = self.g[p * n + a]; // column p
             self.v[a] = self.g[a * n + p]; // row p
         }
-        let inv = T::one() / gpp;
-        for b in 0..kk {
-            let f = self.v[b] * inv;
-            let gcol = &mut self.g[b * n..b * n + kk];
-            for a in 0..kk {
-                gcol[a] -= self.u[a] * f;
-            }
-        }
+        // G - G_{:,p} G_{p,:} / G_pp (row and column p become junk, then the
+        // last index moves into them)
+        gemm(
+            view_mut(&mut self.g, kk, kk, n),
+            true,
+            view(&self.u, kk, 1, n),
+            view(&self.v, kk, 1, n).transpose(),
+            -(T::one() / gpp),
+        );
         // the last index takes position p
         let last = kk - 1;
         if p != last {
@@ -335,6 +394,7 @@ impl<T: Scalar> Kernel<'_, T> {
             for b in 0..kk {
                 self.g[b * n + p] = self.g[b * n + last];
             }
+            self.mb.copy_within(last * n..last * n + n, p * n);
             let moved = self.set[last];
             self.set[p] = moved;
             self.pos[moved] = p;
@@ -420,46 +480,42 @@ impl<T: Scalar> Kernel<'_, T> {
     fn values_once(&mut self) -> Residual {
         let (n, kk) = (self.n, self.set.len());
         let l = self.lambda;
-        // rhs of B's rows and z_B, dz_B
+        // [z_B | dz_B] = -G [q_B + L d_B | d_B]
         for a in 0..kk {
             let i = self.set[a];
-            self.u[a] = self.q[i] + l * self.d[i];
-            self.v[a] = self.d[i];
+            self.rhs2[a] = self.q[i] + l * self.d[i];
+            self.rhs2[n + a] = self.d[i];
+        }
+        // [w | dw] = [q + L d | d] + M_{:,B} [z_B | dz_B]
+        for i in 0..n {
+            self.w2[i] = self.q[i] + l * self.d[i];
+            self.w2[n + i] = self.d[i];
+        }
+        if kk > 0 {
+            gemm(
+                view_mut(&mut self.zb2, kk, 2, n),
+                false,
+                view(&self.g, kk, kk, n),
+                view(&self.rhs2, kk, 2, n),
+                -T::one(),
+            );
+            gemm(
+                view_mut(&mut self.w2, n, 2, n),
+                true,
+                view(&self.mb, n, kk, n),
+                view(&self.zb2, kk, 2, n),
+                T::one(),
+            );
         }
         self.z.iter_mut().for_each(|x| *x = T::zero());
         self.dz.iter_mut().for_each(|x| *x = T::zero());
-        {
-            // z_B and dz_B in B's order (contiguous), then scattered
-            let (zb, dzb) = (&mut self.gu[..kk], &mut self.vg[..kk]);
-            zb.iter_mut().for_each(|x| *x = T::zero());
-            dzb.iter_mut().for_each(|x| *x = T::zero());
-            for b in 0..kk {
-                let (ub, vb) = (self.u[b], self.v[b]);
-                let gcol = &self.g[b * n..b * n + kk];
-                for ((z, dz), &g) in zb.iter_mut().zip(dzb.iter_mut()).zip(gcol) {
-                    *z -= g * ub;
-                    *dz -= g * vb;
-                }
-            }
-            for a in 0..kk {
-                let i = self.set[a];
-                self.z[i] = zb[a];
-                self.dz[i] = dzb[a];
-            }
+        for a in 0..kk {
+            let i = self.set[a];
+            self.z[i] = self.zb2[a];
+            self.dz[i] = self.zb2[n + a];
         }
-        // w = q + L d + M_{:,B} z_B, dw = d + M_{:,B} dz_B
-        for i in 0..n {
-            self.w[i] = self.q[i] + l * self.d[i];
-            self.dw[i] = self.d[i];
-        }
-        for &j in &self.set {
-            let (zj, dzj) = (self.z[j], self.dz[j]);
-            let c = &self.cols[j][..n];
-            for ((w, dw), &m) in self.w.iter_mut().zip(self.dw.iter_mut()).zip(c) {
-                *w += m * zj;
-                *dw += m * dzj;
-            }
-        }
+        self.w.copy_from_slice(&self.w2[..n]);
+        self.dw.copy_from_slice(&self.w2[n..]);
         // B's rows: w_B must vanish (relative to the row's terms, as the
         // engine's breakpoint residuals)
         let mut eq = 0.0f64;

@@ -222,6 +222,10 @@ fn declined_cases_go_to_the_engine() {
     assert_eq!(obs.path.info.method, FAST);
     assert_eq!(obs.observer.0, 2);
     assert_eq!(obs.path.segments.len(), 2);
+    // above the order cap (`tolerance::PRINCIPAL_MAX_N`)
+    let vals: Vec<f64> = (0..199).map(|i| ((i * 37 % 101) as f64) / 101.0).collect();
+    let big = family(401, &vals, 0.1, 0.0, 1.0);
+    assert_eq!(method(&big, &s), "lemke");
     // f32 and the other bases are the engine's
     let p32 = Plcp::new(
         mat![[2.0f32, 1.0], [1.0, 2.0]].as_ref(),
