@@ -362,8 +362,9 @@ pub struct FreeBlockInfo {
 ///     plcp::Plcp::new(m.as_ref(), col![1.0, 1.0].as_ref(), col![-1.0, -0.5].as_ref()).unwrap();
 /// let path = plcp::solve(&problem, &plcp::Settings::default()).unwrap();
 /// let info = &path.info;
-/// // the principal-pivoting fast path answered (`Settings::principal`)
-/// assert_eq!((info.method, info.precision), ("lemke (principal)", "f64"));
+/// // no finite `L_max`: the general engine (with one, the principal-pivoting
+/// // fast path, `Settings::principal`, answers: "lemke (principal)")
+/// assert_eq!((info.method, info.precision), ("lemke", "f64"));
 /// assert_eq!(info.pivots, 1); // z0 replaces w0 at L = 1
 /// assert!(info.residual.worst() < 1e-14);
 /// assert!(info.escalation.is_none() && info.certificate.is_none());

@@ -42,11 +42,11 @@ use faer::{Col, MatRef};
 
 /// The kernel's state: the basic set, the inverse of its block, the values and
 /// slopes at the current `L`.
-struct Kernel<'a, T: Scalar> {
+pub(crate) struct Kernel<'a, T: Scalar> {
     n: usize,
     cols: Vec<&'a [T]>,
-    q: &'a [T],
-    d: &'a [T],
+    q: Vec<T>,
+    d: Vec<T>,
     /// `B` in the order of `G`'s rows and columns.
     set: Vec<usize>,
     /// position of `i` in `set`, or `usize::MAX`
@@ -76,6 +76,8 @@ struct Kernel<'a, T: Scalar> {
     col_norm1: Vec<T>,
     m_norm1: T,
     max_cond: f64,
+    /// the condition bound of the current basis, `None` after a pivot
+    cond_now: Option<f64>,
     inversions: usize,
     pivots_since_inversion: usize,
 }
@@ -93,7 +95,6 @@ pub(crate) enum Decline {
 }
 
 /// Traces a dense standard-form problem by principal pivoting, or declines.
-#[allow(clippy::too_many_arguments)]
 pub(crate) fn trace<T: Scalar>(
     m: MatRef<'_, T>,
     q: faer::ColRef<'_, T>,
@@ -104,164 +105,45 @@ pub(crate) fn trace<T: Scalar>(
     label: &'static str,
 ) -> Result<Path<T>, Decline> {
     let timer = std::time::Instant::now();
-    let n = m.nrows();
     let Some(lmax) = lambda_max.filter(|l| l.is_finite()) else {
         return Err(Decline::NotEligible);
     };
-    if n == 0
-        || n > crate::tolerance::PRINCIPAL_MAX_N
-        || m.ncols() != n
-        || lmax < lambda0
-        || crate::observe::observing()
-    {
+    if lmax < lambda0 || crate::observe::observing() {
         return Err(Decline::NotEligible);
     }
-    let (Some(q), Some(d)) = (q.try_as_col_major(), d.try_as_col_major()) else {
-        return Err(Decline::NotEligible);
+    let mut k = Kernel::new(m).ok_or(Decline::NotEligible)?;
+    k.load(q, d, lambda0)?;
+    let n = k.n;
+    let mut rec = (Vec::with_capacity(n / 2 + 2), Vec::with_capacity(n / 2 + 1));
+    k.run(lmax, max_pivots, Some(&mut rec))?;
+    let (segments, breakpoints) = rec;
+    let end = k.point_at(lmax);
+    let info = Info {
+        method: label,
+        precision: T::NAME,
+        pivots: breakpoints.len(),
+        refactorisations: k.inversions,
+        max_condition: k.max_cond,
+        solve_seconds: timer.elapsed().as_secs_f64(),
+        ..Info::default()
     };
-    let (q, d) = (q.as_slice(), d.as_slice());
-    let mut cols = Vec::with_capacity(n);
-    for j in 0..n {
-        match m.col(j).try_as_col_major() {
-            Some(c) => cols.push(c.as_slice()),
-            None => return Err(Decline::NotEligible),
-        }
-    }
-    let col_norm1: Vec<T> = cols
-        .iter()
-        .map(|c| c.iter().fold(T::zero(), |a, &x| a + x.abs()))
-        .collect();
-    let m_norm1 = col_norm1.iter().fold(T::zero(), |a, &x| a.max(x));
-    let mut k = Kernel {
-        n,
-        cols,
-        q,
-        d,
-        set: Vec::with_capacity(n),
-        pos: vec![usize::MAX; n],
-        g: Vec::new(),
-        mb: Vec::new(),
-        rhs2: vec![T::zero(); 2 * n],
-        zb2: vec![T::zero(); 2 * n],
-        w2: vec![T::zero(); 2 * n],
-        z: vec![T::zero(); n],
-        dz: vec![T::zero(); n],
-        w: vec![T::zero(); n],
-        dw: vec![T::zero(); n],
-        lambda: lambda0,
-        u: vec![T::zero(); n],
-        v: vec![T::zero(); n],
-        gu: vec![T::zero(); n],
-        vg: vec![T::zero(); n],
-        col_norm1,
-        m_norm1,
-        max_cond: 1.0,
-        inversions: 0,
-        pivots_since_inversion: 0,
-    };
-    k.values()?;
-    // a strictly feasible start: every w clear of zero (a zero w is a
-    // degenerate start, which the general engine's lexicographic rule takes)
-    let eps = T::eps();
-    let tie = T::from_f64(PRINCIPAL_TIE_EPS) * eps;
-    for i in 0..n {
-        let s = T::one().max(k.q[i].abs()).max((lambda0 * k.d[i]).abs());
-        if !clearly_above(k.w[i], tie * s) {
-            return Err(Decline::StartNotInterior);
-        }
-    }
-    let mut segments: Vec<Segment<T>> = Vec::with_capacity(n / 2 + 2);
-    let mut breakpoints: Vec<Breakpoint<T>> = Vec::with_capacity(n / 2 + 1);
-    loop {
-        // ratio test: the smallest step of L to a zero of a basic variable
-        let (mut best, mut second, mut arg) = (T::max_value(), T::max_value(), usize::MAX);
-        let (mut rate_max, mut rate_arg) = (T::zero(), T::zero());
-        for i in 0..n {
-            let (x, dx) = if k.pos[i] != usize::MAX {
-                (k.z[i], k.dz[i])
-            } else {
-                (k.w[i], k.dw[i])
-            };
-            rate_max = rate_max.max(dx.abs());
-            if dx < T::zero() {
-                let t = x / -dx;
-                if t < best {
-                    second = best;
-                    best = t;
-                    arg = i;
-                    rate_arg = dx;
-                } else if t < second {
-                    second = t;
-                }
-            }
-        }
-        let room = lmax - k.lambda;
-        let scale = T::one().max(k.lambda.abs()).max(lmax.abs());
-        let window = tie * scale;
-        if arg == usize::MAX || best > room + window {
-            // L_max is reached inside this segment
-            let seg = k.segment(lmax, false);
-            segments.push(seg);
-            let end = k.point_at(lmax);
-            let final_basis = Some(k.basis());
-            let info = Info {
-                method: label,
-                precision: T::NAME,
-                pivots: breakpoints.len(),
-                refactorisations: k.inversions,
-                max_condition: k.max_cond,
-                solve_seconds: timer.elapsed().as_secs_f64(),
-                ..Info::default()
-            };
-            return Ok(Path {
-                status: Status::Reached,
-                lambda0,
-                lambda_max,
-                lambda_reached: lmax,
-                breakpoints,
-                segments,
-                end,
-                ray: None,
-                message: String::new(),
-                info,
-                final_basis,
-            });
-        }
-        // too close to L_max, to zero, or to the next ratio, or a blocking
-        // rate that may be rounding (small against the segment's largest):
-        // not decided here
-        if (best - room).abs() <= window
-            || best <= window
-            || second - best <= window
-            || rate_arg.abs() <= tie * rate_max
-        {
-            return Err(Decline::Tie);
-        }
-        if breakpoints.len() >= max_pivots {
-            return Err(Decline::PivotLimit);
-        }
-        let at = k.lambda + best;
-        segments.push(k.segment(at, false));
-        let (leaving, entering) = if k.pos[arg] != usize::MAX {
-            k.remove(arg)?;
-            (Var::Z(arg), Var::W(arg))
-        } else {
-            k.add(arg)?;
-            (Var::W(arg), Var::Z(arg))
-        };
-        k.lambda = at;
-        let residual = k.values()?;
-        breakpoints.push(Breakpoint {
-            lambda: at,
-            entering,
-            leaving,
-            degenerate: false,
-            turning: false,
-            segment: segments.len(),
-            residual,
-        });
-    }
+    Ok(Path {
+        status: Status::Reached,
+        lambda0,
+        lambda_max,
+        lambda_reached: lmax,
+        breakpoints,
+        segments,
+        end,
+        ray: None,
+        message: String::new(),
+        info,
+        final_basis: Some(k.basis()),
+    })
 }
+
+/// What a traced path records: its segments and breakpoints.
+pub(crate) type Record<T> = (Vec<Segment<T>>, Vec<Breakpoint<T>>);
 
 /// `k x c` view of `buf` (column-major, stride `n`).
 fn view<T: Scalar>(buf: &[T], k: usize, c: usize, n: usize) -> MatRef<'_, T> {
@@ -293,9 +175,247 @@ fn gemm<T: Scalar>(
     faer::linalg::matmul::matmul(dst, accum, a, b, alpha, faer::Par::Seq);
 }
 
+/// `G[:k, :k] += alpha x y'` (column-major, stride `n`).
+fn rank_one<T: Scalar>(g: &mut [T], n: usize, k: usize, x: &[T], y: &[T], alpha: T) {
+    gemm(
+        view_mut(g, k, k, n),
+        true,
+        view(x, k, 1, n),
+        view(y, k, 1, n).transpose(),
+        alpha,
+    );
+}
+
 /// `x > bound`, false where either is NaN (a NaN declines).
 fn clearly_above<T: Scalar>(x: T, bound: T) -> bool {
     x.partial_cmp(&bound) == Some(core::cmp::Ordering::Greater)
+}
+
+impl<'a, T: Scalar> Kernel<'a, T> {
+    /// The kernel for `M` (square, dense, contiguous columns, order at most
+    /// [`crate::tolerance::PRINCIPAL_MAX_N`]), with every `w` basic.
+    pub(crate) fn new(m: MatRef<'a, T>) -> Option<Self> {
+        let n = m.nrows();
+        if n == 0 || n > crate::tolerance::PRINCIPAL_MAX_N || m.ncols() != n || T::NAME != "f64" {
+            return None;
+        }
+        let mut cols = Vec::with_capacity(n);
+        for j in 0..n {
+            cols.push(m.col(j).try_as_col_major()?.as_slice());
+        }
+        let col_norm1: Vec<T> = cols
+            .iter()
+            .map(|c| c.iter().fold(T::zero(), |a, &x| a + x.abs()))
+            .collect();
+        let m_norm1 = col_norm1.iter().fold(T::zero(), |a, &x| a.max(x));
+        Some(Kernel {
+            n,
+            cols,
+            q: vec![T::zero(); n],
+            d: vec![T::zero(); n],
+            set: Vec::with_capacity(n),
+            pos: vec![usize::MAX; n],
+            g: Vec::new(),
+            mb: Vec::new(),
+            rhs2: vec![T::zero(); 2 * n],
+            zb2: vec![T::zero(); 2 * n],
+            w2: vec![T::zero(); 2 * n],
+            z: vec![T::zero(); n],
+            dz: vec![T::zero(); n],
+            w: vec![T::zero(); n],
+            dw: vec![T::zero(); n],
+            lambda: T::zero(),
+            u: vec![T::zero(); n],
+            v: vec![T::zero(); n],
+            gu: vec![T::zero(); n],
+            vg: vec![T::zero(); n],
+            col_norm1,
+            m_norm1,
+            max_cond: 1.0,
+            cond_now: None,
+            inversions: 0,
+            pivots_since_inversion: 0,
+        })
+    }
+
+    /// Makes `set` the basic `z` (`G` inverted afresh).
+    pub(crate) fn set_basis(&mut self, set: &[usize]) -> Result<(), Decline> {
+        let n = self.n;
+        if set.iter().any(|&i| i >= n) {
+            return Err(Decline::NotEligible);
+        }
+        for &i in &self.set {
+            self.pos[i] = usize::MAX;
+        }
+        self.set.clear();
+        if !set.is_empty() && self.g.is_empty() {
+            self.g = vec![T::zero(); n * n];
+            self.mb = vec![T::zero(); n * n];
+        }
+        for (a, &i) in set.iter().enumerate() {
+            if self.pos[i] != usize::MAX {
+                return Err(Decline::NotEligible);
+            }
+            self.pos[i] = a;
+            self.set.push(i);
+            self.mb[a * n..a * n + n].copy_from_slice(&self.cols[i][..n]);
+        }
+        self.invert()
+    }
+
+    /// The basic `z` (in `G`'s order).
+    pub(crate) fn basic_set(&self) -> &[usize] {
+        &self.set
+    }
+
+    /// Takes the data `q`, `d` at `lambda0` on the current basis: the values
+    /// there, which must be strictly feasible (every basic value clear of
+    /// zero; a zero one is a degenerate start, for the engine's
+    /// lexicographic rule).
+    pub(crate) fn load(
+        &mut self,
+        q: faer::ColRef<'_, T>,
+        d: faer::ColRef<'_, T>,
+        lambda0: T,
+    ) -> Result<(), Decline> {
+        let n = self.n;
+        if q.nrows() != n || d.nrows() != n {
+            return Err(Decline::NotEligible);
+        }
+        for i in 0..n {
+            self.q[i] = q[i];
+            self.d[i] = d[i];
+        }
+        self.lambda = lambda0;
+        self.values()?;
+        let tie = T::from_f64(PRINCIPAL_TIE_EPS) * T::eps();
+        let zmax = self.z.iter().fold(T::one(), |a, &x| a.max(x.abs()));
+        for i in 0..n {
+            let ok = if self.pos[i] != usize::MAX {
+                clearly_above(self.z[i], tie * zmax)
+            } else {
+                let s = T::one()
+                    .max(self.q[i].abs())
+                    .max((lambda0 * self.d[i]).abs());
+                clearly_above(self.w[i], tie * s)
+            };
+            if !ok {
+                return Err(Decline::StartNotInterior);
+            }
+        }
+        Ok(())
+    }
+
+    /// Traces from the loaded start to `lmax` (at most `max_pivots` pivots),
+    /// recording segments and breakpoints into `rec` if given; returns the
+    /// pivots. The kernel then stands on the last segment's basis with its
+    /// values at that segment's start ([`Self::point_at`] gives the end).
+    pub(crate) fn run(
+        &mut self,
+        lmax: T,
+        max_pivots: usize,
+        mut rec: Option<&mut Record<T>>,
+    ) -> Result<usize, Decline> {
+        let n = self.n;
+        let tie = T::from_f64(PRINCIPAL_TIE_EPS) * T::eps();
+        let mut pivots = 0;
+        loop {
+            // ratio test: the smallest step of L to a zero of a basic variable
+            let (mut best, mut second, mut arg) = (T::max_value(), T::max_value(), usize::MAX);
+            let (mut rate_max, mut rate_arg) = (T::zero(), T::zero());
+            for i in 0..n {
+                let (x, dx) = if self.pos[i] != usize::MAX {
+                    (self.z[i], self.dz[i])
+                } else {
+                    (self.w[i], self.dw[i])
+                };
+                rate_max = rate_max.max(dx.abs());
+                if dx < T::zero() {
+                    let t = x / -dx;
+                    if t < best {
+                        second = best;
+                        best = t;
+                        arg = i;
+                        rate_arg = dx;
+                    } else if t < second {
+                        second = t;
+                    }
+                }
+            }
+            let room = lmax - self.lambda;
+            let scale = T::one().max(self.lambda.abs()).max(lmax.abs());
+            let window = tie * scale;
+            if arg == usize::MAX || best > room + window {
+                // L_max is reached inside this segment
+                if let Some(rec) = rec.as_deref_mut() {
+                    let seg = self.segment(lmax, false);
+                    rec.0.push(seg);
+                }
+                return Ok(pivots);
+            }
+            // too close to L_max, to zero, or to the next ratio, or a blocking
+            // rate that may be rounding (small against the segment's largest):
+            // not decided here
+            if (best - room).abs() <= window
+                || best <= window
+                || second - best <= window
+                || rate_arg.abs() <= tie * rate_max
+            {
+                return Err(Decline::Tie);
+            }
+            if pivots >= max_pivots {
+                return Err(Decline::PivotLimit);
+            }
+            let at = self.lambda + best;
+            if let Some(rec) = rec.as_deref_mut() {
+                let seg = self.segment(at, false);
+                rec.0.push(seg);
+            }
+            let (leaving, entering) = if self.pos[arg] != usize::MAX {
+                self.remove(arg)?;
+                (Var::Z(arg), Var::W(arg))
+            } else {
+                self.add(arg)?;
+                (Var::W(arg), Var::Z(arg))
+            };
+            pivots += 1;
+            self.lambda = at;
+            let residual = self.values()?;
+            if let Some(rec) = rec.as_deref_mut() {
+                let segment = rec.0.len();
+                rec.1.push(Breakpoint {
+                    lambda: at,
+                    entering,
+                    leaving,
+                    degenerate: false,
+                    turning: false,
+                    segment,
+                    residual,
+                });
+            }
+        }
+    }
+
+    /// The point at `l` on the current segment, written into `pt` (sized to
+    /// `n`, no `u`).
+    pub(crate) fn point_into(&self, l: T, pt: &mut Point<T>) {
+        let n = self.n;
+        if pt.z.nrows() != n || pt.w.nrows() != n {
+            pt.z = Col::zeros(n);
+            pt.w = Col::zeros(n);
+        }
+        pt.u = Col::zeros(0);
+        pt.lambda = l;
+        let t = l - self.lambda;
+        let (z, w) = (crate::linalg::col_slice_mut(&mut pt.z), &mut pt.w);
+        for i in 0..n {
+            z[i] = self.z[i] + self.dz[i] * t;
+        }
+        let w = crate::linalg::col_slice_mut(w);
+        for i in 0..n {
+            w[i] = self.w[i] + self.dw[i] * t;
+        }
+    }
 }
 
 impl<T: Scalar> Kernel<'_, T> {
@@ -343,13 +463,7 @@ impl<T: Scalar> Kernel<'_, T> {
         }
         let inv = T::one() / s;
         // G + gu vg' / s, bordered by -gu / s, -vg' / s and 1 / s
-        gemm(
-            view_mut(&mut self.g, kk, kk, n),
-            true,
-            view(&self.gu, kk, 1, n),
-            view(&self.vg, kk, 1, n).transpose(),
-            inv,
-        );
+        rank_one(&mut self.g, n, kk, &self.gu[..kk], &self.vg[..kk], inv);
         for b in 0..kk {
             self.g[b * n + kk] = -(self.vg[b] * inv);
             self.g[kk * n + b] = -(self.gu[b] * inv);
@@ -378,11 +492,12 @@ impl<T: Scalar> Kernel<'_, T> {
         }
         // G - G_{:,p} G_{p,:} / G_pp (row and column p become junk, then the
         // last index moves into them)
-        gemm(
-            view_mut(&mut self.g, kk, kk, n),
-            true,
-            view(&self.u, kk, 1, n),
-            view(&self.v, kk, 1, n).transpose(),
+        rank_one(
+            &mut self.g,
+            n,
+            kk,
+            &self.u[..kk],
+            &self.v[..kk],
             -(T::one() / gpp),
         );
         // the last index takes position p
@@ -406,6 +521,7 @@ impl<T: Scalar> Kernel<'_, T> {
 
     /// The condition bound after a pivot, and the periodic fresh inversion.
     fn after_pivot(&mut self) -> Result<(), Decline> {
+        self.cond_now = None;
         self.pivots_since_inversion += 1;
         if self.pivots_since_inversion >= crate::tolerance::PRINCIPAL_REINVERT_PERIOD {
             self.invert()?;
@@ -418,6 +534,7 @@ impl<T: Scalar> Kernel<'_, T> {
         let (n, kk) = (self.n, self.set.len());
         self.inversions += 1;
         self.pivots_since_inversion = 0;
+        self.cond_now = None;
         if kk == 0 {
             return Ok(());
         }
@@ -454,19 +571,27 @@ impl<T: Scalar> Kernel<'_, T> {
     fn checked(&mut self, r: Residual) -> Result<Residual, Decline> {
         // cond_1 of the basis [M_{:,B} | -I_N] is at most
         // max(1, |M_{:,B}|_1) * max(1, |G|_1 (1 + |M|_1))
-        let (n, kk) = (self.n, self.set.len());
-        let mut g1 = T::zero();
-        let mut mb1 = T::zero();
-        for b in 0..kk {
-            g1 = g1.max(
-                self.g[b * n..b * n + kk]
-                    .iter()
-                    .fold(T::zero(), |a, &x| a + x.abs()),
-            );
-            mb1 = mb1.max(self.col_norm1[self.set[b]]);
-        }
-        let cond =
-            T::one().max(mb1).to_f64() * T::one().max(g1 * (T::one() + self.m_norm1)).to_f64();
+        // (G changes only at a pivot or an inversion)
+        let cond = match self.cond_now {
+            Some(c) => c,
+            None => {
+                let (n, kk) = (self.n, self.set.len());
+                let mut g1 = T::zero();
+                let mut mb1 = T::zero();
+                for b in 0..kk {
+                    g1 = g1.max(
+                        self.g[b * n..b * n + kk]
+                            .iter()
+                            .fold(T::zero(), |a, &x| a + x.abs()),
+                    );
+                    mb1 = mb1.max(self.col_norm1[self.set[b]]);
+                }
+                let c = T::one().max(mb1).to_f64()
+                    * T::one().max(g1 * (T::one() + self.m_norm1)).to_f64();
+                self.cond_now = Some(c);
+                c
+            }
+        };
         if !cond.is_finite() || cond * T::eps().to_f64() > PRINCIPAL_MAX_COND_EPS {
             return Err(Decline::Condition);
         }
@@ -571,7 +696,7 @@ impl<T: Scalar> Kernel<'_, T> {
         }
     }
 
-    fn point_at(&self, l: T) -> Point<T> {
+    pub(crate) fn point_at(&self, l: T) -> Point<T> {
         let t = l - self.lambda;
         Point {
             lambda: l,
@@ -582,7 +707,7 @@ impl<T: Scalar> Kernel<'_, T> {
     }
 
     /// The complementary basis: `Z(i)` for `i` in `B`, else `W(i)`.
-    fn basis(&self) -> Vec<Var> {
+    pub(crate) fn basis(&self) -> Vec<Var> {
         (0..self.n)
             .map(|i| {
                 if self.pos[i] != usize::MAX {

@@ -56,6 +56,16 @@ pub struct Solver<'a, T: Scalar> {
     zeros: Col<T>,
     /// The end residual's work vectors (kept between steps).
     res: EndResidual<T>,
+    /// The principal-pivoting kernel ([`crate::principal`]), where the
+    /// settings allow it: once a step has ended on a complementary basis,
+    /// the next steps run on it (its inverse of `M_BB` kept between steps)
+    /// while it decides them; `kernel_live` says whether it holds the
+    /// solver's basis (else the engine does).
+    kernel: Option<crate::principal::Kernel<'a, T>>,
+    kernel_live: bool,
+    /// The kernel's basic set at the start of a step (the engine's warm
+    /// start when the kernel hands the step back).
+    kernel_start: Vec<usize>,
 }
 
 /// The lean result of one call of the solver ([`Solver::step_end`],
@@ -129,6 +139,9 @@ impl<'a, T: Scalar> Solver<'a, T> {
             },
             zeros: Col::zeros(n),
             res: EndResidual::default(),
+            kernel: None,
+            kernel_live: false,
+            kernel_start: Vec::new(),
         })
     }
 
@@ -154,6 +167,10 @@ impl<'a, T: Scalar> Solver<'a, T> {
     ) -> Result<Path<T>, PlcpError> {
         self.check_data(q, d)?;
         let timer = std::time::Instant::now();
+        if self.kernel_live {
+            let set = self.kernel.as_ref().map(|k| k.basic_set().to_vec());
+            self.kernel_to_engine(q, d, &set.unwrap_or_default());
+        }
         let mut info = Info {
             method: "lemke",
             precision: T::NAME,
@@ -256,6 +273,10 @@ impl<'a, T: Scalar> Solver<'a, T> {
                 u: Col::zeros(0),
             };
         }
+        if self.kernel_step(q, d, lambda_max) {
+            self.last.solve_seconds = timer.elapsed().as_secs_f64();
+            return Ok(());
+        }
         let mut info = Info::default();
         let Some(was_warm) = self.engine_for(q, d, &mut info) else {
             let (qo, dout) = (q.to_owned(), d.to_owned());
@@ -306,9 +327,125 @@ impl<'a, T: Scalar> Solver<'a, T> {
             };
         if !kept {
             self.engine = None;
+        } else {
+            self.engine_to_kernel();
         }
         self.last.solve_seconds = timer.elapsed().as_secs_f64();
         Ok(())
+    }
+
+    /// Whether the settings let the kernel run the loop (as
+    /// [`crate::Settings::principal`] for a path).
+    fn kernel_allowed(&self) -> bool {
+        self.settings.principal
+            && self.settings.basis == crate::settings::BasisKind::Block
+            && T::NAME == "f64"
+    }
+
+    /// One lean step on the kernel, if it is live and decides the step:
+    /// `true` with `self.last` filled. Else the engine takes the step from
+    /// the kernel's basis at the step's start (`false`).
+    fn kernel_step(&mut self, q: ColRef<'_, T>, d: ColRef<'_, T>, lambda_max: T) -> bool {
+        if !self.kernel_live {
+            return false;
+        }
+        let Some(k) = self.kernel.as_mut() else {
+            return false;
+        };
+        let n = self.m.nrows();
+        self.kernel_start.clear();
+        self.kernel_start.extend_from_slice(k.basic_set());
+        let max_pivots = self.settings.max_pivots.unwrap_or(50 * n + 1000);
+        let run = k
+            .load(q, d, T::zero())
+            .and_then(|()| k.run(lambda_max, max_pivots, None));
+        if let Ok(pivots) = run {
+            k.point_into(lambda_max, &mut self.last.end);
+            let residual = self.res.measure(self.m, q, d, &self.last.end);
+            let worst = residual.worst();
+            let eps = T::eps().to_f64();
+            if !(worst.is_nan() || worst > eps.sqrt()) {
+                // drift: above the values' budget, G afresh for the next step
+                let fresh = if worst > FACTOR_KEPT_EPS * eps {
+                    let set = k.basic_set().to_vec();
+                    k.set_basis(&set).is_ok()
+                } else {
+                    true
+                };
+                let last = &mut self.last;
+                last.status = Status::Reached;
+                last.message.clear();
+                last.pivots = pivots;
+                last.start_pivots = 0;
+                last.warm = true;
+                last.residual = residual;
+                self.kernel_live = fresh;
+                if !fresh {
+                    // no basis is kept: the next call starts cold
+                    self.engine = None;
+                }
+                return true;
+            }
+        }
+        let set = std::mem::take(&mut self.kernel_start);
+        self.kernel_to_engine(q, d, &set);
+        self.kernel_start = set;
+        false
+    }
+
+    /// The engine at `L = 0` of `(q, d)` on the basis whose basic `z` are
+    /// `set` (the kernel's): `None` where it is singular or infeasible (the
+    /// next call starts cold). The kernel is no longer live.
+    fn kernel_to_engine(&mut self, q: ColRef<'_, T>, d: ColRef<'_, T>, set: &[usize]) {
+        self.kernel_live = false;
+        let n = self.m.nrows();
+        let mut basis: Vec<Var> = (0..n).map(Var::W).collect();
+        for &i in set {
+            basis[i] = Var::Z(i);
+        }
+        self.engine = Engine::new(
+            self.m.into(),
+            0,
+            q.to_owned(),
+            d.to_owned(),
+            basis,
+            T::zero(),
+            self.settings,
+        )
+        .ok()
+        .filter(|e| e.infeasibility().is_none());
+    }
+
+    /// After an engine step that ended on a complementary basis (kept): the
+    /// kernel takes that basis for the next step, where it is allowed and
+    /// the block of its basic `z` inverts well.
+    fn engine_to_kernel(&mut self) {
+        if !self.kernel_allowed() {
+            return;
+        }
+        let Some(eng) = self.engine.as_ref() else {
+            return;
+        };
+        if !eng.basis.iter().all(|v| matches!(v, Var::Z(_) | Var::W(_))) {
+            return;
+        }
+        let set: Vec<usize> = eng
+            .basis
+            .iter()
+            .filter_map(|v| match *v {
+                Var::Z(i) => Some(i),
+                _ => None,
+            })
+            .collect();
+        if self.kernel.is_none() {
+            self.kernel = crate::principal::Kernel::new(self.m);
+        }
+        if let Some(k) = self.kernel.as_mut() {
+            if k.set_basis(&set).is_ok() {
+                self.kernel_live = true;
+                self.engine = None;
+            }
+        }
     }
 
     /// The entries of `q` and `d`: `n` each, finite.
