@@ -263,6 +263,11 @@ impl<'a, T: Scalar> Kernel<'a, T> {
         self.invert()
     }
 
+    /// The largest condition bound met so far.
+    pub(crate) fn max_condition(&self) -> f64 {
+        self.max_cond
+    }
+
     /// The basic `z` (in `G`'s order).
     pub(crate) fn basic_set(&self) -> &[usize] {
         &self.set

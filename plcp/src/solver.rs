@@ -167,9 +167,8 @@ impl<'a, T: Scalar> Solver<'a, T> {
     ) -> Result<Path<T>, PlcpError> {
         self.check_data(q, d)?;
         let timer = std::time::Instant::now();
-        if self.kernel_live {
-            let set = self.kernel.as_ref().map(|k| k.basic_set().to_vec());
-            self.kernel_to_engine(q, d, &set.unwrap_or_default());
+        if let Some(path) = self.kernel_path(q, d, lambda_max, timer) {
+            return Ok(path);
         }
         let mut info = Info {
             method: "lemke",
@@ -212,9 +211,84 @@ impl<'a, T: Scalar> Solver<'a, T> {
         };
         if !kept {
             self.engine = None;
+        } else {
+            self.engine_to_kernel();
         }
         path.info.solve_seconds = timer.elapsed().as_secs_f64();
         Ok(path)
+    }
+
+    /// A full step on the kernel, if it is live and decides the step (the
+    /// same pivots and bits as [`Self::kernel_step`]); else the engine takes
+    /// the step from the kernel's basis at the step's start (`None`).
+    fn kernel_path(
+        &mut self,
+        q: ColRef<'_, T>,
+        d: ColRef<'_, T>,
+        lambda_max: T,
+        timer: std::time::Instant,
+    ) -> Option<Path<T>> {
+        if !self.kernel_live {
+            return None;
+        }
+        let n = self.m.nrows();
+        let max_pivots = self.settings.max_pivots.unwrap_or(50 * n + 1000);
+        let k = self.kernel.as_mut()?;
+        self.kernel_start.clear();
+        self.kernel_start.extend_from_slice(k.basic_set());
+        let mut rec: crate::principal::Record<T> = (Vec::new(), Vec::new());
+        let run = k
+            .load(q, d, T::zero())
+            .and_then(|()| k.run(lambda_max, max_pivots, Some(&mut rec)));
+        let path = run.ok().map(|pivots| Path {
+            status: Status::Reached,
+            lambda0: T::zero(),
+            lambda_max: Some(lambda_max),
+            lambda_reached: lambda_max,
+            breakpoints: rec.1,
+            segments: rec.0,
+            end: k.point_at(lambda_max),
+            ray: None,
+            message: String::new(),
+            info: Info {
+                method: "lemke (principal)",
+                precision: T::NAME,
+                pivots,
+                warm_start: true,
+                max_condition: k.max_condition(),
+                ..Info::default()
+            },
+            final_basis: Some(k.basis()),
+        });
+        if let Some(mut path) = path {
+            self.measure(&mut path, q, d);
+            if path.status == Status::Reached {
+                self.after_kernel_step(path.info.residual.worst());
+                path.info.solve_seconds = timer.elapsed().as_secs_f64();
+                return Some(path);
+            }
+        }
+        let set = std::mem::take(&mut self.kernel_start);
+        self.kernel_to_engine(q, d, &set);
+        self.kernel_start = set;
+        None
+    }
+
+    /// Drift control after a kernel step with end residual `worst`: above
+    /// [`FACTOR_KEPT_EPS`] `eps` the inverse is computed afresh (and if that
+    /// fails no basis is kept: the next call starts cold).
+    fn after_kernel_step(&mut self, worst: f64) {
+        if worst <= FACTOR_KEPT_EPS * T::eps().to_f64() {
+            return;
+        }
+        let fresh = self.kernel.as_mut().is_some_and(|k| {
+            let set = k.basic_set().to_vec();
+            k.set_basis(&set).is_ok()
+        });
+        if !fresh {
+            self.kernel_live = false;
+            self.engine = None;
+        }
     }
 
     /// [`Self::lcp`] with the lean result [`StepEnd`] (no [`Path`]).
@@ -365,13 +439,6 @@ impl<'a, T: Scalar> Solver<'a, T> {
             let worst = residual.worst();
             let eps = T::eps().to_f64();
             if !(worst.is_nan() || worst > eps.sqrt()) {
-                // drift: above the values' budget, G afresh for the next step
-                let fresh = if worst > FACTOR_KEPT_EPS * eps {
-                    let set = k.basic_set().to_vec();
-                    k.set_basis(&set).is_ok()
-                } else {
-                    true
-                };
                 let last = &mut self.last;
                 last.status = Status::Reached;
                 last.message.clear();
@@ -379,11 +446,7 @@ impl<'a, T: Scalar> Solver<'a, T> {
                 last.start_pivots = 0;
                 last.warm = true;
                 last.residual = residual;
-                self.kernel_live = fresh;
-                if !fresh {
-                    // no basis is kept: the next call starts cold
-                    self.engine = None;
-                }
+                self.after_kernel_step(worst);
                 return true;
             }
         }
