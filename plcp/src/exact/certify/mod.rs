@@ -15,9 +15,15 @@
 //!    there), or `L_max` for the last segment of a `reached` path (which needs
 //!    `L_max` in `I_k`), or `+inf` for an unbounded ray (which needs `I_k`
 //!    unbounded above).
-//! 4. A `secondary_ray` (the path claims it cannot go on) is continued
-//!    exactly from the last segment's basis ([`super::trace_from`]), which
-//!    must end on a secondary ray at the same exact `L`.
+//! 4. A `secondary_ray` (the path claims it cannot go on) is proven
+//!    directly at any order (ray.rs): from the last segment's basis, the
+//!    exact pivots at `L*` (each forced, `L` held at `L*`) reach a basis
+//!    whose driver's column blocks nothing while the rate of `L` is not
+//!    positive. Where that is undecided (a tie at `L*`, a Wolfe basis with
+//!    free variables held at zero), the path is continued exactly from the
+//!    last segment's basis ([`super::trace_from`], order at most
+//!    [`super::EXACT_MAX_DIM`]), which must end on a secondary ray at the
+//!    same exact `L`.
 //!
 //! Where the float path steps over events closer than its rounding (two
 //! variables reaching zero `1e-16` apart, taken as one degenerate breakpoint

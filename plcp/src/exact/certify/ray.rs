@@ -42,6 +42,18 @@
 //! form with free variables held at zero), or too many pivots at `L*` leave
 //! the claim unproven ([`Verdict::Undecided`]): the caller may ask the exact
 //! tracer where it applies, else the claim is not certified.
+//!
+//! Mixed problems: Lemke on the Schur reduction keeps every free variable
+//! basic (its segments list `z` and `w` only; the certificate adds every
+//! `u`), so its bases are square in `u`, `z`, `w`, `L`, and free variables,
+//! unbounded in sign, never block. Wolfe's long form may hold free
+//! variables at zero with the artificial of an equality row basic (any move
+//! of such a row blocks, and an artificial that leaves starts Wolfe's
+//! unlocking moves, which are not recorded in the path); a `secondary_ray`
+//! of that kind, and the stall Wolfe reports with the same status (an
+//! equality row blocks every move of `L`, `Path::ray` is `None`), is
+//! undecided here unless the last segment's basis holds every free
+//! variable.
 
 use super::super::modular;
 use super::super::short;
