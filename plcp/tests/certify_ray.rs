@@ -109,6 +109,61 @@ fn a_true_secondary_ray_above_the_exact_tracer_limit_is_certified() {
     );
 }
 
+/// A mixed problem of order 453: one free variable `u0 = z1` (the equality
+/// row `0 = u0 - z1`), the pairs `w0 = 1 + u0`, `w1 = 1 - L - z0` (the skew
+/// block through the free variable: a secondary ray at `L = 1`, along which
+/// `z1` and the free `u0` rise and `L` stays), and the tridiagonal block of
+/// [`padded`]. Lemke (on the Schur reduction) and Wolfe both end
+/// `secondary_ray` at `L = 1`, certified directly.
+#[test]
+fn a_mixed_secondary_ray_above_the_exact_tracer_limit_is_certified() {
+    let big = 450;
+    let base = padded(big, false);
+    let (bm, bq, bd) = (base.m(), base.q(), base.d());
+    let n = 3 + big;
+    let m = Mat::from_fn(n, n, |i, j| match (i, j) {
+        (0, 0) => 1.0,
+        (0, 2) => -1.0,
+        (1, 0) => 1.0,
+        (2, 1) => -1.0,
+        _ if i >= 3 && j >= 3 => bm[(i - 3, j - 3)],
+        _ => 0.0,
+    });
+    let q = Col::from_fn(n, |i| match i {
+        0 => 0.0,
+        1 | 2 => 1.0,
+        _ => bq[i - 3],
+    });
+    let d = Col::from_fn(n, |i| match i {
+        2 => -1.0,
+        0 | 1 => 0.0,
+        _ => bd[i - 3],
+    });
+    let problem = Plcp::mixed(m.as_ref(), q.as_ref(), d.as_ref(), 1).unwrap();
+    assert!(problem.dim() > plcp::exact::EXACT_MAX_DIM);
+    for method in [plcp::Method::Lemke, plcp::Method::Wolfe] {
+        let path = plcp::solve(&problem, &Settings::with_method(method)).unwrap();
+        assert_eq!(path.status, Status::SecondaryRay, "{}", describe(&path));
+        assert_eq!(path.lambda_reached, 1.0, "{}", describe(&path));
+        let timer = Instant::now();
+        let cert = plcp::certify(&problem, &path);
+        eprintln!(
+            "{method:?}, order {}: {} ({:.2} s)",
+            problem.dim(),
+            cert.summary(),
+            timer.elapsed().as_secs_f64()
+        );
+        assert!(cert.certified(), "{method:?}: {}", cert.summary());
+        let how = cert.secondary_ray.clone().unwrap_or_default();
+        assert!(
+            how.starts_with("direct")
+                && how.contains("z1 blocks nothing")
+                && how.contains("L stays"),
+            "{method:?}: {how}"
+        );
+    }
+}
+
 /// Order 452: the P-matrix block's correct path (an unbounded ray after its
 /// events) cut at its last breakpoint, or at the one before, and relabelled
 /// `secondary_ray` is rejected: the exact path goes on, as an unbounded ray,
