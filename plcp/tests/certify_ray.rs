@@ -164,6 +164,39 @@ fn a_mixed_secondary_ray_above_the_exact_tracer_limit_is_certified() {
     }
 }
 
+/// A secondary ray after a turning point (found by the random test below,
+/// case 11): `L` rises to `25/24`, turns, and falls to `1/3`, where `z2`
+/// leaves and the column of `w2` blocks nothing while `L` falls at rate
+/// `-4/5` per unit of `w2` (`w2 = 5/12 - 5/4 L` with `z1` basic). The exact
+/// tracer from `L0` ends there too; the exact continuation could not check
+/// it (it continues from inside a segment with `L` rising), the direct
+/// certificate does.
+#[test]
+fn a_secondary_ray_after_a_turning_point_is_certified_directly() {
+    let rows = [[1.25, 1.25, 0.0], [-0.25, -0.75, 0.5], [1.0, 0.25, 1.25]];
+    let m = Mat::from_fn(3, 3, |i, j| rows[i][j]);
+    let q = Col::from_fn(3, |i| [1.25, 1.25, 0.0][i]);
+    let d = Col::from_fn(3, |i| [0.0, -1.5, -0.75][i]);
+    let problem = Plcp::new(m.as_ref(), q.as_ref(), d.as_ref()).unwrap();
+    let exact = plcp::exact::trace(&problem, &Settings::default()).unwrap();
+    let third = BigRational::new(1.into(), 3.into());
+    assert_eq!(exact.path.status, Status::SecondaryRay);
+    assert_eq!(exact.lambda_reached, third);
+    let path = plcp::solve(&problem, &Settings::default()).unwrap();
+    assert_eq!(path.status, Status::SecondaryRay, "{}", describe(&path));
+    let last = path.segments.last().unwrap();
+    assert!(last.lambda_to < last.lambda_from, "{}", describe(&path));
+    let cert = plcp::certify(&problem, &path);
+    assert!(cert.certified(), "{}", cert.summary());
+    assert_eq!(cert.breakpoints.last(), Some(&third));
+    let how = cert.secondary_ray.clone().unwrap_or_default();
+    assert!(
+        how.starts_with("direct: 1 exact pivots")
+            && how.contains("w2 blocks nothing and L falls at rate -4/5"),
+        "{how}"
+    );
+}
+
 /// Order 452: the P-matrix block's correct path (an unbounded ray after its
 /// events) cut at its last breakpoint, or at the one before, and relabelled
 /// `secondary_ray` is rejected: the exact path goes on, as an unbounded ray,
