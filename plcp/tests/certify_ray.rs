@@ -342,3 +342,72 @@ fn the_direct_certificate_agrees_with_the_exact_continuation() {
         "{direct} direct, {rejected} rejected"
     );
 }
+
+/// A dense P-matrix block of order `big` (`A A^T / 16 + big I`, `A` of
+/// quarter-integers in `[-2, 2]`, rounded to quarters) with every ninth
+/// `w` falling fast (many events), beside the skew block of [`padded`]: a
+/// secondary ray at `L = 1` after dozens of segments.
+fn dense_padded(big: usize) -> Plcp<f64> {
+    let mut rng = ChaCha8Rng::seed_from_u64(7);
+    let a = Mat::from_fn(big, big, |_, _| f64::from(rng.gen_range(-8..=8)) / 4.0);
+    let n = big + 2;
+    let m = Mat::from_fn(n, n, |i, j| {
+        if i < big && j < big {
+            let mut s = if i == j { big as f64 } else { 0.0 };
+            for k in 0..big {
+                s += a[(i, k)] * a[(j, k)] / 16.0;
+            }
+            (s * 4.0).round() / 4.0
+        } else if i >= big && j >= big {
+            [[0.0, 1.0], [-1.0, 0.0]][i - big][j - big]
+        } else {
+            0.0
+        }
+    });
+    let q = Col::from_fn(n, |i| {
+        if i < big {
+            1.0 + (i % 7) as f64 / 8.0
+        } else {
+            1.0
+        }
+    });
+    let d = Col::from_fn(n, |i| match i {
+        _ if i == big + 1 => -1.0,
+        _ if i >= big => 0.0,
+        _ if i % 9 == 0 => -(big as f64),
+        _ => 0.5,
+    });
+    Plcp::new(m.as_ref(), q.as_ref(), d.as_ref()).unwrap()
+}
+
+/// The second opinion on dense problems, with the times of both checks:
+/// the direct certificate and the exact tracer's continuation agree on the
+/// secondary ray at `L = 1` at orders 62, 122 and 202 (14, 49 and 97
+/// segments). Ignored for its time (about 25 s, the continuation's
+/// big-integer tableau at order 202); reprint with
+/// `cargo test --release -p plcp --test certify_ray -- --ignored --nocapture`.
+#[test]
+#[ignore]
+fn dense_secondary_rays_direct_and_continued_agree() {
+    for big in [60usize, 120, 200] {
+        let problem = dense_padded(big);
+        let path = plcp::solve(&problem, &Settings::default()).unwrap();
+        assert_eq!(path.status, Status::SecondaryRay, "{}", describe(&path));
+        let t = Instant::now();
+        let cert = plcp::certify(&problem, &path);
+        let tc = t.elapsed().as_secs_f64();
+        assert!(cert.certified(), "{}", cert.summary());
+        let how = cert.secondary_ray.clone().unwrap_or_default();
+        assert!(how.starts_with("direct"), "{how}");
+        let t = Instant::now();
+        let exact = continuation(&problem, &path).expect("order <= 400");
+        let tx = t.elapsed().as_secs_f64();
+        assert_eq!(exact.path.status, Status::SecondaryRay);
+        assert_eq!(Some(&exact.lambda_reached), cert.breakpoints.last());
+        eprintln!(
+            "order {}, {} segments: the whole certificate {tc:.3} s ({how}); the exact continuation alone {tx:.3} s",
+            problem.dim(),
+            path.segments.len()
+        );
+    }
+}
