@@ -13,9 +13,10 @@
 //! `z`, `w` has `y_r > 0`, and the rate of `L` along it, `-y_L`, is not
 //! positive (zero: `L` stays at `L*`; negative: `L` falls without bound).
 //! Every point of the ray is complementary (the driver's pair has only the
-//! driver nonzero, every other pair one basic member) and feasible: Lemke's
-//! method, which moves on only while some variable blocks the driver or `L`
-//! rises, cannot go on from there.
+//! driver nonzero, every other pair one basic member) and feasible; Lemke's
+//! method pivots again only where something blocks the driver, so it
+//! follows the ray for ever, and `L` never rises along it: the path reaches
+//! no `L` beyond `L*`.
 //!
 //! The certificate builds that basis from the last segment's complementary
 //! basis `S` (certified by the segment checks, ending exactly at `L*`):
