@@ -52,6 +52,28 @@ impl Scaled {
         target.iter().map(|&c| self.cols.get(c).cloned()).collect()
     }
 
+    /// The right-hand side `q` (scaled rows).
+    pub fn q(&self) -> &[BigInt] {
+        &self.q
+    }
+
+    /// Column `c` of `[u | z | w | z0 | L]` in the tableau's numbering, with
+    /// `L` as a variable (its column `-d`, `lam` its number): `None` for `z0`,
+    /// artificials and beyond.
+    pub fn column(&self, c: usize, lam: usize) -> Option<Vec<(usize, BigInt)>> {
+        if c == lam {
+            return Some(
+                self.d
+                    .iter()
+                    .enumerate()
+                    .filter(|(_, v)| !v.is_zero())
+                    .map(|(i, v)| (i, -v))
+                    .collect(),
+            );
+        }
+        self.cols.get(c).cloned()
+    }
+
     /// The free block `M[0..p, 0..p]` (scaled rows) is nonsingular modulo a
     /// prime, which proves it nonsingular; false says nothing.
     pub fn free_block_nonsingular(&self, p: usize) -> bool {
@@ -161,6 +183,30 @@ impl Solution {
         (&self.a[i], &self.b[i])
     }
 
+    /// A rate `r` per unit of the stored variable of column `c` as a rate per
+    /// unit of the variable itself (a stored `w_i` is `2^-row_exp w_i`).
+    pub fn per_unit(&self, c: usize, r: BigRational) -> BigRational {
+        let (p, n) = (self.p, self.n);
+        if c >= p + n && c < p + 2 * n {
+            let e = self.row_exp[c - n];
+            let two = BigRational::from_integer(BigInt::from(2));
+            return r * num_traits::pow::Pow::pow(two, -e);
+        }
+        r
+    }
+
+    /// The sign of the basic variable of row `i` at `L = l` (`-1`, `0`, `1`;
+    /// the row scaling is a positive power of two and keeps it).
+    pub fn sign_at(&self, i: usize, l: &BigRational) -> i32 {
+        let v = &self.a[i] * &self.db * l.denom() + &self.b[i] * &self.da * l.numer();
+        sign(&v)
+    }
+
+    /// The sign of the slope `d x / dL` of the basic variable of row `i`.
+    pub fn slope_sign(&self, i: usize) -> i32 {
+        sign(&self.b[i])
+    }
+
     /// `-a_i / b_i` for the numerators `(a_i, b_i)` of a row: the root of that
     /// row, exact and reduced.
     pub fn root(&self, a: &BigInt, b: &BigInt) -> BigRational {
@@ -199,5 +245,16 @@ impl Solution {
             return BigRational::zero();
         };
         self.unscale(c, self.b[i].clone(), self.db.clone())
+    }
+}
+
+/// The sign of an integer as `-1`, `0`, `1`.
+pub(crate) fn sign(v: &BigInt) -> i32 {
+    if v.is_positive() {
+        1
+    } else if v.is_negative() {
+        -1
+    } else {
+        0
     }
 }

@@ -15,9 +15,15 @@
 //!    there), or `L_max` for the last segment of a `reached` path (which needs
 //!    `L_max` in `I_k`), or `+inf` for an unbounded ray (which needs `I_k`
 //!    unbounded above).
-//! 4. A `secondary_ray` (the path claims it cannot go on) is continued
-//!    exactly from the last segment's basis ([`super::trace_from`]), which
-//!    must end on a secondary ray at the same exact `L`.
+//! 4. A `secondary_ray` (the path claims it cannot go on) is proven
+//!    directly at any order (ray.rs): from the last segment's basis, the
+//!    exact pivots at `L*` (each forced, `L` held at `L*`) reach a basis
+//!    whose driver's column blocks nothing while the rate of `L` is not
+//!    positive. Where that is undecided (a tie at `L*`, a Wolfe basis with
+//!    free variables held at zero), the path is continued exactly from the
+//!    last segment's basis ([`super::trace_from`], order at most
+//!    [`super::EXACT_MAX_DIM`]), which must end on a secondary ray at the
+//!    same exact `L`.
 //!
 //! Where the float path steps over events closer than its rounding (two
 //! variables reaching zero `1e-16` apart, taken as one degenerate breakpoint
@@ -44,6 +50,7 @@
 mod bases;
 mod bridge;
 mod interval;
+mod ray;
 mod segment;
 
 use self::bases::Bases;
@@ -95,6 +102,12 @@ pub struct Certificate {
     /// other order), where the next segment is still reached from the exact
     /// end, directly or by a bridge.
     pub reordered: usize,
+    /// How a `secondary_ray` claim was proven: `direct: ...` (the exact
+    /// pivots at `L*` and the exact ray, any order; see the module
+    /// documentation, 4.) or `exact continuation: ...` (the exact tracer,
+    /// where the direct certificate is undecided and the order is at most
+    /// [`crate::exact::EXACT_MAX_DIM`]); `None` for other statuses.
+    pub secondary_ray: Option<String>,
     /// Wall-clock seconds.
     pub seconds: f64,
 }
@@ -108,11 +121,14 @@ impl Certificate {
     pub fn summary(&self) -> String {
         match &self.failure {
             None => format!(
-                "certified: {} segments{}, exact breakpoints [{}], largest relative difference of the float breakpoints {:.1e}, {:.3} s",
+                "certified: {} segments{}, exact breakpoints [{}], largest relative difference of the float breakpoints {:.1e}{}, {:.3} s",
                 self.segments,
                 self.bridge_note(),
                 self.breakpoints.iter().map(short).collect::<Vec<_>>().join(", "),
                 self.max_rel_diff,
+                self.secondary_ray
+                    .as_ref()
+                    .map_or(String::new(), |r| format!(", secondary ray {r}")),
                 self.seconds
             ),
             Some(f) => format!("rejected at segment {}: {}", f.segment, f.reason),
@@ -148,6 +164,7 @@ impl Certificate {
             "bridges": self.bridges,
             "bridge_span": self.bridge_span,
             "reordered": self.reordered,
+            "secondary_ray": self.secondary_ray,
             "seconds": self.seconds,
         })
     }
@@ -212,6 +229,8 @@ struct Chain {
     /// A breakpoint whose leaving variable is not the exact one: resolved if
     /// the next segment is reached from the exact end.
     pending: Option<Failure>,
+    /// The exact solution of the last certified segment's basis.
+    last: Option<super::solution::Solution>,
 }
 
 fn run<T: Scalar>(
@@ -236,14 +255,15 @@ fn run<T: Scalar>(
         start: to_rational(path.lambda0),
         prev_target: None,
         pending: None,
+        last: None,
     };
     if path.segments.is_empty() {
         end_point(path, &mut bases, &chain.start, cert)?;
-        return secondary_ray_end(problem, path, &chain.start);
+        return secondary_ray_end(problem, path, &bases, &chain, cert);
     }
     for k in 0..path.segments.len() {
         segment(path, k, &mut bases, &mut chain, u_unique, cert)?;
     }
     path_end(path, &chain.start)?;
-    secondary_ray_end(problem, path, &chain.start)
+    secondary_ray_end(problem, path, &bases, &chain, cert)
 }

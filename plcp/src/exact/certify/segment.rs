@@ -7,6 +7,7 @@ use super::super::{rational_to_f64, rel_diff, short, to_rational};
 use super::bases::Bases;
 use super::bridge::bridge_to;
 use super::interval::{interval, value_at, within};
+use super::ray::{direct, Verdict};
 use super::{fail, Certificate, Chain, Failure};
 use crate::path::{Path, Status, Var};
 use crate::scalar::Scalar;
@@ -109,6 +110,7 @@ pub(super) fn segment<T: Scalar>(
     check_values(&t, seg, &start_k, end.as_ref(), u_unique, limit).map_err(|r| fail(k, r))?;
     cert.segments += 1;
     chain.prev_target = Some(target);
+    chain.last = Some(t);
     Ok(())
 }
 
@@ -389,28 +391,99 @@ fn check_values<T: Scalar>(
 }
 
 /// A `secondary_ray` status claims that the path cannot go on beyond where
-/// it ended: checked by continuing the path exactly
-/// ([`crate::exact::trace_from`]) from the last segment's basis, inside that
-/// segment (or from `L0` without segments). The exact continuation must end
-/// on a secondary ray at the same exact `L`. An f32 path whose last rate of
-/// `L` was hidden by the basis's noise claimed a secondary ray where the
-/// exact path is an unbounded ray, and the segments alone certified it.
-/// A problem the exact tracer does not take (order above
-/// [`crate::exact::EXACT_MAX_DIM`], a singular free block) fails here: the
-/// claim is not proven.
+/// it ended, `L*`. Proven directly ([`super::ray::direct`]: the exact pivots
+/// at `L*` from the last segment's basis and the exact ray, each basis
+/// solved by p-adic lifting, at any order); where that is undecided (a tie
+/// at `L*`, a Wolfe basis with free variables held at zero, a singular
+/// basis) or there is no segment, by continuing the path exactly
+/// ([`crate::exact::trace_from`]) from inside the last segment (or from `L0`
+/// without segments), which must end on a secondary ray at the same exact
+/// `L` (order at most [`crate::exact::EXACT_MAX_DIM`], a free block of full
+/// rank; else the claim is not proven). A direct certificate that shows the
+/// path going on (an unbounded ray, a block while `L` moves) rejects the
+/// claim at once. An f32 path whose last rate of `L` was hidden by the
+/// basis's noise claimed a secondary ray where the exact path is an
+/// unbounded ray, and the segments alone certified it.
 pub(super) fn secondary_ray_end<T: Scalar>(
     problem: &crate::problem::Plcp<T>,
     path: &Path<T>,
-    end: &BigRational,
+    bases: &Bases<'_, T>,
+    chain: &Chain,
+    cert: &mut Certificate,
 ) -> Result<(), Failure> {
     if path.status != Status::SecondaryRay {
         return Ok(());
     }
     let nseg = path.segments.len();
+    let end = &chain.start;
     // enough pivots for the degenerate pivots of the last breakpoint and one
     // more event beyond it: more means the claim is already wrong
+    let max_pivots = 2 * problem.dim() + 16;
+    let undecided = match (path.segments.last(), chain.last.as_ref()) {
+        (Some(_), Some(last)) => match direct(path, bases, last, end, max_pivots) {
+            Ok(proven) => {
+                cert.secondary_ray = Some(format!(
+                    "direct: {} exact pivots at L* = {}, then the column of {} blocks nothing and L {} along it",
+                    proven.pivots,
+                    short(end),
+                    proven.driver,
+                    if proven.rate.is_zero() {
+                        "stays".to_string()
+                    } else {
+                        format!("falls at rate {}", short(&proven.rate))
+                    }
+                ));
+                return Ok(());
+            }
+            Err(Verdict::Wrong(why)) => {
+                return Err(fail(
+                    nseg,
+                    format!(
+                        "status secondary_ray at L = {}, but the exact continuation from the last segment's basis {why}",
+                        short(end)
+                    ),
+                ))
+            }
+            Err(Verdict::Undecided(why)) => Some(why),
+        },
+        _ => None,
+    };
+    match continuation(problem, path, end, max_pivots) {
+        Ok(()) => {
+            cert.secondary_ray = Some(format!(
+                "exact continuation: the exact tracer ends on a secondary ray at L = {}{}",
+                short(end),
+                undecided
+                    .as_ref()
+                    .map_or(String::new(), |w| format!(" (the direct certificate: {w})"))
+            ));
+            Ok(())
+        }
+        Err(f) => Err(match undecided {
+            Some(why) => fail(
+                nseg,
+                format!(
+                    "status secondary_ray at L = {}, not proven by the direct certificate ({why}); {}",
+                    short(end),
+                    f.reason
+                ),
+            ),
+            None => f,
+        }),
+    }
+}
+
+/// The exact tracer continues the path from inside its last segment (from
+/// `L0` without segments) and must end on a secondary ray at `end`.
+fn continuation<T: Scalar>(
+    problem: &crate::problem::Plcp<T>,
+    path: &Path<T>,
+    end: &BigRational,
+    max_pivots: usize,
+) -> Result<(), Failure> {
+    let nseg = path.segments.len();
     let settings = crate::settings::Settings::<T> {
-        max_pivots: Some(2 * problem.dim() + 16),
+        max_pivots: Some(max_pivots),
         ..Default::default()
     };
     let exact = match path.segments.last() {
