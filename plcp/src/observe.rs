@@ -558,7 +558,7 @@ pub(crate) fn emitted_ends<T: Scalar>() -> Option<crate::path::Residual> {
 }
 
 /// True while [`solve_observed`] runs on this thread (any scalar type): the
-/// principal-pivoting fast path ([`crate::principal`]) then leaves the trace
+/// principal-pivoting fast path (`plcp/src/principal.rs`) then leaves the trace
 /// to the engine, whose recording site hands segments to the observer.
 pub(crate) fn observing() -> bool {
     ACTIVE.with(|a| a.borrow().is_some())

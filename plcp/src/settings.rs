@@ -184,7 +184,7 @@ pub struct Settings<T: Scalar> {
     /// n = 700, `Some(2)` does). The arithmetic of the passes, and so the
     /// path, is the same either way.
     pub threads: Option<usize>,
-    /// Let the principal-pivoting fast path ([`crate::principal`]) trace a
+    /// Let the principal-pivoting fast path (`plcp/src/principal.rs`) trace a
     /// dense standard-form `f64` problem whose start `q + L0 d` is strictly
     /// positive, to a finite `L_max`, with the default basis
     /// ([`BasisKind::Block`]) and no warm basis. It hands the problem back to

@@ -56,7 +56,7 @@ pub struct Solver<'a, T: Scalar> {
     zeros: Col<T>,
     /// The end residual's work vectors (kept between steps).
     res: EndResidual<T>,
-    /// The principal-pivoting kernel ([`crate::principal`]), where the
+    /// The principal-pivoting kernel (`plcp/src/principal.rs`), where the
     /// settings allow it: once a step has ended on a complementary basis,
     /// the next steps run on it (its inverse of `M_BB` kept between steps)
     /// while it decides them; `kernel_live` says whether it holds the

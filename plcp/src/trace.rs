@@ -165,7 +165,7 @@ pub(crate) fn principal_measured<T: Scalar>(
     Some(path)
 }
 
-/// The path by [`crate::principal`] where the settings allow it and the
+/// The path by `plcp/src/principal.rs` where the settings allow it and the
 /// kernel answers: Lemke's method asked for, standard form, dense `M`, `f64`,
 /// the default block basis, no warm basis.
 fn principal<T: Scalar>(problem: &Plcp<T>, settings: &Settings<T>) -> Option<Path<T>> {
