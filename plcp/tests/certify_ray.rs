@@ -197,6 +197,49 @@ fn a_secondary_ray_after_a_turning_point_is_certified_directly() {
     );
 }
 
+/// A `secondary_ray` whose `L*` is off: the true path of [`padded`] (order 22
+/// and 452, the exact tracer's order and above) with its last segment's end
+/// and `lambda_reached` moved by a relative `1e-6` (far above `sqrt(eps)`)
+/// is rejected: the claim "no solution beyond `L*`" names the wrong `L*`.
+/// The same path moved by `1e-12` (within the working precision's trust
+/// level) stays certified.
+#[test]
+fn a_secondary_ray_claimed_at_the_wrong_lambda_is_rejected() {
+    for big in [20, 450] {
+        let problem = padded(big, true);
+        let path = plcp::solve(&problem, &Settings::default()).unwrap();
+        assert_eq!(path.status, Status::SecondaryRay, "{}", describe(&path));
+        assert_eq!(path.lambda_reached, 1.0);
+        for (shift, certified) in [(1e-6, false), (-1e-6, false), (1e-12, true)] {
+            let mut moved = path.clone();
+            let l = 1.0 + shift;
+            moved.lambda_reached = l;
+            moved.segments.last_mut().expect("segments").lambda_to = l;
+            let cert = plcp::certify(&problem, &moved);
+            eprintln!(
+                "order {}, L* moved by {shift:e}: {}",
+                problem.dim(),
+                cert.summary()
+            );
+            assert_eq!(
+                cert.certified(),
+                certified,
+                "order {}, shift {shift:e}: {}",
+                problem.dim(),
+                cert.summary()
+            );
+            if !certified {
+                let why = cert
+                    .failure
+                    .as_ref()
+                    .map(|f| f.reason.clone())
+                    .unwrap_or_default();
+                assert!(why.contains("ends exactly at L = 1,"), "{why}");
+            }
+        }
+    }
+}
+
 /// Order 452: the P-matrix block's correct path (an unbounded ray after its
 /// events) cut at its last breakpoint, or at the one before, and relabelled
 /// `secondary_ray` is rejected: the exact path goes on, as an unbounded ray,

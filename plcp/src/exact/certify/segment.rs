@@ -252,9 +252,14 @@ fn check_breakpoint<T: Scalar>(
         }
     }
     // the float breakpoint must be the exact one up to the working
-    // precision's trust level (sqrt(eps), as the residual guard)
+    // precision's trust level (sqrt(eps), as the residual guard); so must
+    // the `L*` of a `secondary_ray` (the path claims no solution beyond it).
+    // A path that stopped for another reason (pivot limit, ill-conditioning,
+    // an observer) may stop inside its last segment: it is certified up to
+    // where it stopped, and its float end is not a breakpoint
     let diff = rel_diff(end_float, e, &chain.start);
-    if !within(diff, limit) && (!last || path.status.is_success()) {
+    let claims_end = path.status.is_success() || path.status == Status::SecondaryRay;
+    if !within(diff, limit) && (!last || claims_end) {
         return Err(fail(
             k,
             format!(
