@@ -311,7 +311,10 @@ where
     // the principal-pivoting fast path's answer, if it gives one, is handed
     // to the observer after the fact (the path `crate::solve` returns, the
     // same bits), as a path on a Schur reduction is
-    let mut fast = crate::trace::principal_measured(problem, settings);
+    let (mut fast, fast_path) = match crate::trace::principal_measured(problem, settings) {
+        Ok(path) => (Some(path), ""),
+        Err(why) => (None, why),
+    };
     let in_engine = fast.is_none() && !(settings.method == Method::Lemke && problem.free() > 0);
     let (p, n) = (problem.free(), problem.n());
     let unscale = if settings.scaling && in_engine {
@@ -358,6 +361,11 @@ where
     };
     let stopped = STOP.with(|s| s.replace(false));
     let mut path = result?;
+    if !fast_path.is_empty() {
+        // the engine's own call of the fast path saw the observer and
+        // declined; the reason that counts is the one before it
+        path.info.fast_path = fast_path;
+    }
     let mut compact = None;
     match active {
         Some(active) => {

@@ -396,6 +396,13 @@ pub struct Info {
     pub max_condition: f64,
     /// The free block (mixed form).
     pub free_block: FreeBlockInfo,
+    /// Why the principal-pivoting fast path ([`crate::Settings::principal`])
+    /// did not answer this path, in words (`"not tried: ..."` where the
+    /// problem or the settings are outside its scope, `"declined: ..."` where
+    /// it started and handed the problem to the general engine); empty where
+    /// it answered (`method` is `lemke (principal)`), and for the steps of
+    /// [`crate::Solver`].
+    pub fast_path: &'static str,
     /// The trace started from [`crate::Settings::warm_basis`] (no start phase).
     pub warm_start: bool,
     /// Why a warm basis that was given was not used (singular, or infeasible at

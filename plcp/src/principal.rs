@@ -91,7 +91,32 @@ pub(crate) enum Decline {
     SmallPivot,
     Condition,
     Residual,
+    Negative,
     PivotLimit,
+}
+
+impl Decline {
+    /// Why, in words ([`crate::Info::fast_path`]).
+    pub(crate) fn reason(self) -> &'static str {
+        match self {
+            Decline::NotEligible => {
+                "not tried: outside its scope (L_max below L0, or M not stored by contiguous columns)"
+            }
+            Decline::StartNotInterior => {
+                "declined: the start is not strictly feasible (a basic value at or below zero at L0)"
+            }
+            Decline::Tie => {
+                "declined: a tie (two events, or an event and L_max, within the tie tolerance; a zero step; or a blocking rate that may be rounding)"
+            }
+            Decline::SmallPivot => {
+                "declined: a pivot below its tolerance (a turning point or a nearly singular block)"
+            }
+            Decline::Condition => "declined: the basis' condition bound above 1e8",
+            Decline::Residual => "declined: the basis' rows off after a fresh inversion",
+            Decline::Negative => "declined: a basic value below zero after a pivot",
+            Decline::PivotLimit => "declined: the pivot limit",
+        }
+    }
 }
 
 /// Traces a dense standard-form problem by principal pivoting, or declines.
@@ -292,7 +317,11 @@ impl<'a, T: Scalar> Kernel<'a, T> {
             self.d[i] = d[i];
         }
         self.lambda = lambda0;
-        self.values()?;
+        // a basic value below zero here is a start that is not feasible
+        self.values().map_err(|e| match e {
+            Decline::Negative => Decline::StartNotInterior,
+            e => e,
+        })?;
         let tie = T::from_f64(PRINCIPAL_TIE_EPS) * T::eps();
         let zmax = self.z.iter().fold(T::one(), |a, &x| a.max(x.abs()));
         for i in 0..n {
@@ -602,7 +631,7 @@ impl<T: Scalar> Kernel<'_, T> {
         }
         self.max_cond = self.max_cond.max(cond);
         if r.feasibility > 0.0 {
-            return Err(Decline::Residual);
+            return Err(Decline::Negative);
         }
         Ok(r)
     }

@@ -108,7 +108,8 @@ pub struct Settings<T: Scalar> {
     /// Covering vector of the start phase (Lemke's artificial variable), one
     /// positive entry per complementary pair. Default `None`: all ones.
     pub covering: Option<Col<T>>,
-    /// Largest number of pivots in all phases. Default `None`: `50 * (n + p) + 1000`.
+    /// Largest number of pivots in all phases. Default `None`: `50 * (n + p) + 1000`
+    /// ([`Self::max_pivots_for`]).
     pub max_pivots: Option<usize>,
     /// Pivot tolerance, as a multiple of the working precision's epsilon: an entry
     /// of the entering column counts only if `|a| > pivot_tol_eps * eps * scale`.
@@ -243,6 +244,20 @@ impl<T: Scalar> Settings<T> {
             method,
             ..Self::default()
         }
+    }
+
+    /// The pivot limit of a problem with `dim = n + p` unknowns in `z` and
+    /// `u`: [`Self::max_pivots`], or by default `50 * dim + 1000` (the one
+    /// place this default is written).
+    ///
+    /// ```
+    /// let s = plcp::Settings::<f64>::default();
+    /// assert_eq!(s.max_pivots_for(10), 1500);
+    /// let s = plcp::Settings::<f64> { max_pivots: Some(7), ..Default::default() };
+    /// assert_eq!(s.max_pivots_for(10), 7);
+    /// ```
+    pub fn max_pivots_for(&self, dim: usize) -> usize {
+        self.max_pivots.unwrap_or(50 * dim + 1000)
     }
 
     /// Checks every setting; `n` is the number of complementary pairs.

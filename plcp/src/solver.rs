@@ -228,18 +228,12 @@ impl<'a, T: Scalar> Solver<'a, T> {
         lambda_max: T,
         timer: std::time::Instant,
     ) -> Option<Path<T>> {
-        if !self.kernel_live {
+        if !self.kernel_live || self.kernel.is_none() {
             return None;
         }
-        let n = self.m.nrows();
-        let max_pivots = self.settings.max_pivots.unwrap_or(50 * n + 1000);
-        let k = self.kernel.as_mut()?;
-        self.kernel_start.clear();
-        self.kernel_start.extend_from_slice(k.basic_set());
         let mut rec: crate::principal::Record<T> = (Vec::new(), Vec::new());
-        let run = k
-            .load(q, d, T::zero())
-            .and_then(|()| k.run(lambda_max, max_pivots, Some(&mut rec)));
+        let run = self.kernel_run(q, d, lambda_max, Some(&mut rec));
+        let k = self.kernel.as_mut()?;
         let path = run.ok().map(|pivots| Path {
             status: Status::Reached,
             lambda0: T::zero(),
@@ -268,10 +262,34 @@ impl<'a, T: Scalar> Solver<'a, T> {
                 return Some(path);
             }
         }
+        self.kernel_fallback(q, d);
+        None
+    }
+
+    /// The kernel's step `(q, d)` from `L = 0` to `lambda_max` (it must be
+    /// live): its pivots, or why it declined. The step's start set is kept
+    /// for [`Self::kernel_fallback`].
+    fn kernel_run(
+        &mut self,
+        q: ColRef<'_, T>,
+        d: ColRef<'_, T>,
+        lambda_max: T,
+        rec: Option<&mut crate::principal::Record<T>>,
+    ) -> Result<usize, crate::principal::Decline> {
+        let max_pivots = self.settings.max_pivots_for(self.m.nrows());
+        let k = self.kernel.as_mut().expect("a live kernel");
+        self.kernel_start.clear();
+        self.kernel_start.extend_from_slice(k.basic_set());
+        k.load(q, d, T::zero())?;
+        k.run(lambda_max, max_pivots, rec)
+    }
+
+    /// The engine takes the step `(q, d)` the kernel did not decide, from the
+    /// kernel's basis at the step's start.
+    fn kernel_fallback(&mut self, q: ColRef<'_, T>, d: ColRef<'_, T>) {
         let set = std::mem::take(&mut self.kernel_start);
         self.kernel_to_engine(q, d, &set);
         self.kernel_start = set;
-        None
     }
 
     /// Drift control after a kernel step with end residual `worst`: above
@@ -420,19 +438,11 @@ impl<'a, T: Scalar> Solver<'a, T> {
     /// `true` with `self.last` filled. Else the engine takes the step from
     /// the kernel's basis at the step's start (`false`).
     fn kernel_step(&mut self, q: ColRef<'_, T>, d: ColRef<'_, T>, lambda_max: T) -> bool {
-        if !self.kernel_live {
+        if !self.kernel_live || self.kernel.is_none() {
             return false;
         }
-        let Some(k) = self.kernel.as_mut() else {
-            return false;
-        };
-        let n = self.m.nrows();
-        self.kernel_start.clear();
-        self.kernel_start.extend_from_slice(k.basic_set());
-        let max_pivots = self.settings.max_pivots.unwrap_or(50 * n + 1000);
-        let run = k
-            .load(q, d, T::zero())
-            .and_then(|()| k.run(lambda_max, max_pivots, None));
+        let run = self.kernel_run(q, d, lambda_max, None);
+        let k = self.kernel.as_mut().expect("a live kernel");
         if let Ok(pivots) = run {
             k.point_into(lambda_max, &mut self.last.end);
             let residual = self.res.measure(self.m, q, d, &self.last.end);
@@ -450,9 +460,7 @@ impl<'a, T: Scalar> Solver<'a, T> {
                 return true;
             }
         }
-        let set = std::mem::take(&mut self.kernel_start);
-        self.kernel_to_engine(q, d, &set);
-        self.kernel_start = set;
+        self.kernel_fallback(q, d);
         false
     }
 

@@ -102,9 +102,10 @@ fn trace_unguarded<T: Scalar>(
     // are relative to each pivot's and row's own terms; a badly scaled
     // problem shows in its condition bound and goes to the engine, which
     // equilibrates)
-    if let Some(path) = principal_measured(problem, settings) {
-        return Ok(path);
-    }
+    let fast_path = match principal_measured(problem, settings) {
+        Ok(path) => return Ok(path),
+        Err(why) => why,
+    };
     // no scales (none asked for, all one, or the scaled data overflow): the
     // trace runs on `problem` itself
     let eq = settings
@@ -124,6 +125,7 @@ fn trace_unguarded<T: Scalar>(
         };
         measure_scaled(problem, &mut path, both_ends, RowScales::Ones);
         path.info.solve_seconds = timer.elapsed().as_secs_f64();
+        path.info.fast_path = fast_path;
         return Ok(path);
     };
     // the covering vector acts on the rows of w: scale it with them, so the start
@@ -141,47 +143,67 @@ fn trace_unguarded<T: Scalar>(
     eq.unscale(problem, &mut path);
     measure_scaled(problem, &mut path, both_ends, RowScales::Scaled(&eq.rows));
     path.info.solve_seconds = timer.elapsed().as_secs_f64();
+    path.info.fast_path = fast_path;
     Ok(path)
 }
 
 /// The fast path's answer ([`principal`]) measured on the problem as every
-/// path is, if its residual passes the guard (`sqrt(eps)`); `None` where the
-/// kernel declines or the guard would fail it (the engine then traces).
+/// path is, if its residual passes the guard (`sqrt(eps)`); else why not
+/// ([`crate::Info::fast_path`]: the kernel was not tried, declined, or the
+/// guard would fail it; the engine then traces).
 /// [`crate::observe::solve_observed`] calls this before it starts its
 /// observer, and hands the path to the observer after the fact.
 pub(crate) fn principal_measured<T: Scalar>(
     problem: &Plcp<T>,
     settings: &Settings<T>,
-) -> Option<Path<T>> {
-    settings.validate(problem.n()).ok()?;
+) -> Result<Path<T>, &'static str> {
+    if settings.validate(problem.n()).is_err() {
+        return Err("not tried: invalid settings");
+    }
     let timer = std::time::Instant::now();
     let mut path = principal(problem, settings)?;
     measure_scaled(problem, &mut path, false, RowScales::Ones);
     let worst = path.info.residual.worst();
     if worst.is_nan() || worst > T::eps().to_f64().sqrt() {
-        return None;
+        return Err("declined: the measured residual above sqrt(eps)");
     }
     path.info.solve_seconds = timer.elapsed().as_secs_f64();
-    Some(path)
+    Ok(path)
 }
 
 /// The path by `plcp/src/principal.rs` where the settings allow it and the
 /// kernel answers: Lemke's method asked for, standard form, dense `M`, `f64`,
 /// the default block basis, no warm basis.
-fn principal<T: Scalar>(problem: &Plcp<T>, settings: &Settings<T>) -> Option<Path<T>> {
-    if !settings.principal
-        || settings.method != Method::Lemke
-        || problem.free() > 0
-        || settings.warm_basis.is_some()
-        || settings.basis != crate::settings::BasisKind::Block
-        || T::NAME != "f64"
-    {
-        return None;
+fn principal<T: Scalar>(
+    problem: &Plcp<T>,
+    settings: &Settings<T>,
+) -> Result<Path<T>, &'static str> {
+    let not = if !settings.principal {
+        "not tried: Settings::principal is off"
+    } else if settings.method != Method::Lemke {
+        "not tried: Wolfe's method asked for"
+    } else if problem.free() > 0 {
+        "not tried: free variables (mixed form)"
+    } else if settings.warm_basis.is_some() {
+        "not tried: a warm basis given"
+    } else if settings.basis != crate::settings::BasisKind::Block {
+        "not tried: a basis other than the default block basis asked for"
+    } else if T::NAME != "f64" {
+        "not tried: a precision other than f64"
+    } else if !problem.lambda_max().is_some_and(|l| l.is_finite()) {
+        "not tried: no finite L_max"
+    } else if problem.n() > crate::tolerance::PRINCIPAL_MAX_N {
+        "not tried: order above PRINCIPAL_MAX_N = 400"
+    } else {
+        ""
+    };
+    if !not.is_empty() {
+        return Err(not);
     }
     let crate::matrix::MatrixRef::Dense(m) = problem.matrix() else {
-        return None;
+        return Err("not tried: sparse M");
     };
-    let max_pivots = settings.max_pivots.unwrap_or(50 * problem.n() + 1000);
+    let max_pivots = settings.max_pivots_for(problem.dim());
     crate::principal::trace(
         m,
         problem.q(),
@@ -191,5 +213,5 @@ fn principal<T: Scalar>(problem: &Plcp<T>, settings: &Settings<T>) -> Option<Pat
         max_pivots,
         "lemke (principal)",
     )
-    .ok()
+    .map_err(crate::principal::Decline::reason)
 }

@@ -479,10 +479,13 @@ fn solve_output_shape() {
         "start_pivots",
         "max_condition",
         "free_block",
+        "fast_path",
     ] {
         assert!(info.get(key).is_some(), "info without {key}: {info}");
     }
     assert_eq!(info["method"], "lemke");
+    // no L_max in this file: the principal fast path does not take it
+    assert_eq!(info["fast_path"], "not tried: no finite L_max");
     assert_eq!(info["precision"], "f64");
     assert!(v["end"].get("u").is_none());
 }

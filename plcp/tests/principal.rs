@@ -150,6 +150,11 @@ fn method(p: &Plcp<f64>, s: &Settings<f64>) -> &'static str {
     solve(p, s).unwrap().info.method
 }
 
+/// `Info::fast_path`: why the fast path did not answer.
+fn why(p: &Plcp<f64>, s: &Settings<f64>) -> &'static str {
+    solve(p, s).unwrap().info.fast_path
+}
+
 #[test]
 fn the_tiny_problem_takes_the_fast_path() {
     let m = mat![[2.0, 1.0], [1.0, 2.0]];
@@ -165,47 +170,14 @@ fn the_tiny_problem_takes_the_fast_path() {
     let path = solve(&p, &Settings::default()).unwrap();
     assert_eq!(path.breakpoints.len(), 1);
     assert_eq!(path.breakpoints[0].lambda, 1.0);
+    assert_eq!(path.info.fast_path, "");
     assert_eq!(method(&p, &engine()), "lemke");
+    assert_eq!(why(&p, &engine()), "not tried: Settings::principal is off");
 }
 
 /// What the fast path hands back: each answered by the engine as before.
 #[test]
 fn declined_cases_go_to_the_engine() {
-    let m = mat![[2.0, 1.0], [1.0, 2.0]];
-    let mk = |m: &Mat<f64>, q: Col<f64>, d: Col<f64>, lmax: Option<f64>| {
-        Plcp::new(m.as_ref(), q.as_ref(), d.as_ref())
-            .unwrap()
-            .with_range(0.0, lmax)
-            .unwrap()
-    };
-    let s = Settings::default();
-    // a zero w at the start (degenerate start)
-    let p = mk(&m, col![1.0, 0.0], col![-1.0, -1.0], Some(2.0));
-    assert_eq!(method(&p, &s), "lemke");
-    assert!(!compare(&p));
-    // two w reach zero together (a tie)
-    let p = mk(
-        &(2.0 * Mat::<f64>::identity(2, 2)),
-        col![1.0, 1.0],
-        col![-1.0, -1.0],
-        Some(3.0),
-    );
-    assert_eq!(method(&p, &s), "lemke");
-    assert!(!compare(&p));
-    // a start that is not feasible (the start phase)
-    let p = mk(&m, col![-1.0, 1.0], col![1.0, -1.0], Some(2.0));
-    assert_eq!(method(&p, &s), "lemke");
-    // no finite L_max (an unbounded ray is the engine's)
-    let p = mk(&m, col![1.0, 1.0], col![-1.0, -0.5], None);
-    assert_eq!(method(&p, &s), "lemke");
-    // an indefinite block: the Schur complement of the second pivot is
-    // negative (L turns), so the path is the engine's
-    let ind = mat![[1.0, -3.0], [-3.0, 1.0]];
-    let p = mk(&ind, col![1.0, 1.2], col![-1.0, -1.0], Some(5.0));
-    let a = solve(&p, &s).unwrap();
-    assert_eq!(a.info.method, "lemke");
-    assert!(!compare(&p));
-    // an observer: the fast path's answer is handed to it after the fact
     struct Count(usize);
     impl plcp::Observer<f64> for Count {
         fn on_segment(
@@ -217,15 +189,75 @@ fn declined_cases_go_to_the_engine() {
             plcp::Control::Continue
         }
     }
+    let m = mat![[2.0, 1.0], [1.0, 2.0]];
+    let mk = |m: &Mat<f64>, q: Col<f64>, d: Col<f64>, lmax: Option<f64>| {
+        Plcp::new(m.as_ref(), q.as_ref(), d.as_ref())
+            .unwrap()
+            .with_range(0.0, lmax)
+            .unwrap()
+    };
+    let s = Settings::default();
+    // a zero w at the start (degenerate start)
+    let p = mk(&m, col![1.0, 0.0], col![-1.0, -1.0], Some(2.0));
+    assert_eq!(method(&p, &s), "lemke");
+    assert!(why(&p, &s).starts_with("declined: the start is not strictly feasible"));
+    assert!(!compare(&p));
+    // the same with an observer: the reason is the fast path's own, not
+    // the observer's (the engine's call of the fast path sees the observer)
+    let seen = plcp::solve_observed(&p, &s, Count(0), plcp::Keep::All)
+        .unwrap()
+        .path;
+    assert_eq!(seen.info.method, "lemke");
+    assert_eq!(seen.info.fast_path, why(&p, &s));
+    // two w reach zero together (a tie)
+    let p = mk(
+        &(2.0 * Mat::<f64>::identity(2, 2)),
+        col![1.0, 1.0],
+        col![-1.0, -1.0],
+        Some(3.0),
+    );
+    assert_eq!(method(&p, &s), "lemke");
+    assert!(
+        why(&p, &s).starts_with("declined: a tie"),
+        "{}",
+        why(&p, &s)
+    );
+    assert!(!compare(&p));
+    // a start that is not feasible (the start phase)
+    let p = mk(&m, col![-1.0, 1.0], col![1.0, -1.0], Some(2.0));
+    assert_eq!(method(&p, &s), "lemke");
+    assert!(why(&p, &s).starts_with("declined: the start is not strictly feasible"));
+    // no finite L_max (an unbounded ray is the engine's)
+    let p = mk(&m, col![1.0, 1.0], col![-1.0, -0.5], None);
+    assert_eq!(method(&p, &s), "lemke");
+    assert_eq!(why(&p, &s), "not tried: no finite L_max");
+    // an indefinite block: the Schur complement of the second pivot is
+    // negative (L turns), so the path is the engine's
+    let ind = mat![[1.0, -3.0], [-3.0, 1.0]];
+    let p = mk(&ind, col![1.0, 1.2], col![-1.0, -1.0], Some(5.0));
+    let a = solve(&p, &s).unwrap();
+    assert_eq!(a.info.method, "lemke");
+    assert!(
+        a.info.fast_path.starts_with("declined: "),
+        "{}",
+        a.info.fast_path
+    );
+    assert!(!compare(&p));
+    // an observer: the fast path's answer is handed to it after the fact
     let p = mk(&m, col![1.0, 1.0], col![-1.0, -0.5], Some(1.5));
     let obs = plcp::solve_observed(&p, &s, Count(0), plcp::Keep::All).unwrap();
     assert_eq!(obs.path.info.method, FAST);
+    assert_eq!(obs.path.info.fast_path, "");
     assert_eq!(obs.observer.0, 2);
     assert_eq!(obs.path.segments.len(), 2);
     // above the order cap (`tolerance::PRINCIPAL_MAX_N`)
     let vals: Vec<f64> = (0..199).map(|i| ((i * 37 % 101) as f64) / 101.0).collect();
     let big = family(401, &vals, 0.1, 0.0, 1.0);
     assert_eq!(method(&big, &s), "lemke");
+    assert_eq!(
+        why(&big, &s),
+        "not tried: order above PRINCIPAL_MAX_N = 400"
+    );
     // f32 and the other bases are the engine's
     let p32 = Plcp::new(
         mat![[2.0f32, 1.0], [1.0, 2.0]].as_ref(),
@@ -235,13 +267,16 @@ fn declined_cases_go_to_the_engine() {
     .unwrap()
     .with_range(0.0, Some(1.5))
     .unwrap();
-    assert_eq!(
-        solve(&p32, &Settings::default()).unwrap().info.method,
-        "lemke"
-    );
+    let a32 = solve(&p32, &Settings::default()).unwrap();
+    assert_eq!(a32.info.method, "lemke");
+    assert_eq!(a32.info.fast_path, "not tried: a precision other than f64");
     let dense = Settings {
         basis: plcp::BasisKind::Dense,
         ..Settings::default()
     };
     assert_eq!(method(&p, &dense), "lemke");
+    assert_eq!(
+        why(&p, &dense),
+        "not tried: a basis other than the default block basis asked for"
+    );
 }

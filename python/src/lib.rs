@@ -359,6 +359,7 @@ fn info_dict<'py>(py: Python<'py>, info: &plcp::Info) -> PyResult<Bound<'py, PyD
     d.set_item("free_rank", info.free_block.rank)?;
     d.set_item("seconds", info.solve_seconds)?;
     d.set_item("escalated", info.escalation.is_some())?;
+    d.set_item("fast_path", info.fast_path)?;
     Ok(d)
 }
 

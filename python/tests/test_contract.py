@@ -144,8 +144,10 @@ def test_mixed_form_with_free_variables(sparse):
 def test_info_dict():
     info = plcp.solve(M2, Q2, D2).info
     for key in ["method", "precision", "pivots", "start_pivots", "degenerate_pivots",
-                "refactorisations", "turning_points", "residuals", "max_condition", "seconds"]:
+                "refactorisations", "turning_points", "residuals", "max_condition", "seconds",
+                "fast_path"]:
         assert key in info
+    assert isinstance(info["fast_path"], str)
     assert info["pivots"] >= 1
     assert set(info["residuals"]) == {"equation", "feasibility", "complementarity"}
     assert info["seconds"] >= 0.0

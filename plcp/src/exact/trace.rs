@@ -274,7 +274,7 @@ impl Run {
             l0,
             lambda0_t: problem.lambda0().to_f64(),
             lambda_max: problem.lambda_max().map(to_rational),
-            max_pivots: settings.max_pivots.unwrap_or(50 * (n + p) + 1000),
+            max_pivots: settings.max_pivots_for(n + p),
             pivots: 0,
             start_pivots: 0,
             degenerate: 0,

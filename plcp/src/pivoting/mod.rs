@@ -283,7 +283,7 @@ impl<'a, T: Scalar> Engine<'a, T> {
             x: Col::zeros(dim),
             lambda,
             settings,
-            max_pivots: settings.max_pivots.unwrap_or(50 * dim + 1000),
+            max_pivots: settings.max_pivots_for(dim),
             pivots: 0,
             degenerate_pivots: 0,
             refactorisations: 0,

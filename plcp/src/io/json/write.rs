@@ -366,6 +366,7 @@ struct InfoOut {
     turning_points: usize,
     max_condition: Num64,
     free_block: FreeBlockOut,
+    fast_path: &'static str,
 }
 
 impl InfoOut {
@@ -388,6 +389,7 @@ impl InfoOut {
                 nonbasic_free: info.free_block.nonbasic_free.clone(),
                 dependent_rows: info.free_block.dependent_rows.clone(),
             },
+            fast_path: info.fast_path,
         }
     }
 }
@@ -481,7 +483,8 @@ struct PathOut<'a, T: Scalar> {
 /// [`crate::residual::residual`]), `timing` (`solve_seconds`, as passed in),
 /// `info` (`method`, `precision`, `pivots`, `start_pivots`,
 /// `degenerate_pivots`, `refactorisations`, `turning_points`, `max_condition`,
-/// `free_block` {`rank`, `nonbasic_free`, `dependent_rows`}), `message`, and
+/// `free_block` {`rank`, `nonbasic_free`, `dependent_rows`}, `fast_path`:
+/// [`crate::Info::fast_path`]), `message`, and
 /// `ray` (`start` point, `dlambda`, `dz`, `dw`, (`du`)) when the path ended on one.
 /// Non-finite numbers are `null`.
 pub fn path_json<T: Scalar>(
