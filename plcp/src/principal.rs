@@ -16,6 +16,11 @@
 //! and their slopes the same with `d` alone: `O(k^2 + n k)` a pivot (faer's
 //! products over `G` and a copy of `M_{:,B}`), no factorisation of the whole
 //! basis, no refinement, no lexicographic rows.
+//! Between fresh evaluations (every
+//! [`crate::tolerance::PRINCIPAL_REFRESH_PERIOD`] pivots and at every
+//! inversion) the basic `z` move to the breakpoint along their slopes and
+//! the slopes change by the pivot's column of `G` (`w` afresh and `dw`
+//! updated in one product over `M_{:,B}`): no product over `G`.
 //!
 //! The kernel decides only what it decides with margin. It hands the problem
 //! back (an `Err` saying why, before any segment is handed out) on: an order
@@ -78,8 +83,9 @@ pub(crate) struct Kernel<'a, T: Scalar> {
     /// `||M_{:,j}||_1` of every column, and their largest (`||M||_1`)
     col_norm1: Vec<T>,
     m_norm1: T,
-    /// `M = M'` exactly: then `G' v = G u` on an addition (one product)
-    symmetric: bool,
+    /// `M_BB` symmetric (exactly): then so is `G` (to rounding), and an
+    /// addition with `M_jB = M_Bj'` takes `G' v = G u` (one product)
+    block_symmetric: bool,
     max_cond: f64,
     /// the condition bound of the current basis, `None` after a pivot
     cond_now: Option<f64>,
@@ -257,7 +263,6 @@ impl<'a, T: Scalar> Kernel<'a, T> {
             .map(|c| c.iter().fold(T::zero(), |a, &x| a + x.abs()))
             .collect();
         let m_norm1 = col_norm1.iter().fold(T::zero(), |a, &x| a.max(x));
-        let symmetric = (0..n).all(|j| (0..j).all(|i| cols[j][i] == cols[i][j]));
         Some(Kernel {
             n,
             cols,
@@ -282,7 +287,7 @@ impl<'a, T: Scalar> Kernel<'a, T> {
             vg: vec![T::zero(); n],
             col_norm1,
             m_norm1,
-            symmetric,
+            block_symmetric: true,
             max_cond: 1.0,
             cond_now: None,
             inversions: 0,
@@ -315,6 +320,10 @@ impl<'a, T: Scalar> Kernel<'a, T> {
             self.set.push(i);
             self.mb[a * n..a * n + n].copy_from_slice(&self.cols[i][..n]);
         }
+        self.block_symmetric = set
+            .iter()
+            .enumerate()
+            .all(|(a, &i)| set[..a].iter().all(|&h| self.m(h, i) == self.m(i, h)));
         self.invert()
     }
 
@@ -525,7 +534,8 @@ impl<T: Scalar> Kernel<'_, T> {
             view(&self.u, kk, 1, n),
             T::one(),
         );
-        if self.symmetric {
+        let symmetric = self.block_symmetric && self.u[..kk] == self.v[..kk];
+        if symmetric {
             // v = u and G = G' (to rounding): G' v = G u
             self.vg[..kk].copy_from_slice(&self.gu[..kk]);
         } else {
@@ -549,6 +559,7 @@ impl<T: Scalar> Kernel<'_, T> {
             return Err(Decline::SmallPivot);
         }
         let inv = T::one() / s;
+        self.block_symmetric = symmetric;
         // G + gu vg' / s, bordered by -gu / s, -vg' / s and 1 / s
         rank_one(&mut self.g, n, kk, &self.gu[..kk], &self.vg[..kk], inv);
         for b in 0..kk {
