@@ -16,6 +16,11 @@
 //! and their slopes the same with `d` alone: `O(k^2 + n k)` a pivot (faer's
 //! products over `G` and a copy of `M_{:,B}`), no factorisation of the whole
 //! basis, no refinement, no lexicographic rows.
+//! Between fresh evaluations (every
+//! [`crate::tolerance::PRINCIPAL_REFRESH_PERIOD`] pivots and at every
+//! inversion) the basic `z` move to the breakpoint along their slopes and
+//! the slopes change by the pivot's column of `G` (`w` afresh and `dw`
+//! updated in one product over `M_{:,B}`): no product over `G`.
 //!
 //! The kernel decides only what it decides with margin. It hands the problem
 //! back (an `Err` saying why, before any segment is handed out) on: an order
@@ -36,7 +41,8 @@
 use crate::path::{Breakpoint, Info, Path, Point, Residual, Segment, Status, Var};
 use crate::scalar::Scalar;
 use crate::tolerance::{
-    PRINCIPAL_MAX_COND_EPS, PRINCIPAL_PIVOT_EPS, PRINCIPAL_RESIDUAL_EPS, PRINCIPAL_TIE_EPS,
+    PRINCIPAL_MAX_COND_EPS, PRINCIPAL_PIVOT_EPS, PRINCIPAL_REFRESH_PERIOD,
+    PRINCIPAL_REINVERT_PERIOD, PRINCIPAL_RESIDUAL_EPS, PRINCIPAL_TIE_EPS,
 };
 use faer::{Col, MatRef};
 
@@ -51,6 +57,8 @@ pub(crate) struct Kernel<'a, T: Scalar> {
     set: Vec<usize>,
     /// position of `i` in `set`, or `usize::MAX`
     pos: Vec<usize>,
+    /// the complementary basis (`Z(i)` for `i` in `B`, else `W(i)`)
+    vars: Vec<Var>,
     /// `G = S^-1`, column-major with stride `n` (`G[a + b n]`).
     g: Vec<T>,
     /// `M_{:,B}`: column `a` is `M`'s column `set[a]` (stride `n`), for the
@@ -75,11 +83,16 @@ pub(crate) struct Kernel<'a, T: Scalar> {
     /// `||M_{:,j}||_1` of every column, and their largest (`||M||_1`)
     col_norm1: Vec<T>,
     m_norm1: T,
+    /// `M_BB` symmetric (exactly): then so is `G` (to rounding), and an
+    /// addition with `M_jB = M_Bj'` takes `G' v = G u` (one product)
+    block_symmetric: bool,
     max_cond: f64,
     /// the condition bound of the current basis, `None` after a pivot
     cond_now: Option<f64>,
     inversions: usize,
     pivots_since_inversion: usize,
+    /// pivots since the values and slopes were last computed afresh
+    since_fresh: usize,
 }
 
 /// Why the kernel handed a problem back (for tests and the trace log).
@@ -211,6 +224,23 @@ fn rank_one<T: Scalar>(g: &mut [T], n: usize, k: usize, x: &[T], y: &[T], alpha:
     );
 }
 
+/// `sum_i abs(x_i)`, in four running sums (the order of a bound's terms
+/// does not matter; four lanes let the compiler vectorise).
+fn abs_sum<T: Scalar>(x: &[T]) -> T {
+    let mut acc = [T::zero(); 4];
+    let mut chunks = x.chunks_exact(4);
+    for c in &mut chunks {
+        for (a, &v) in acc.iter_mut().zip(c) {
+            *a += v.abs();
+        }
+    }
+    let mut s = (acc[0] + acc[1]) + (acc[2] + acc[3]);
+    for &v in chunks.remainder() {
+        s += v.abs();
+    }
+    s
+}
+
 /// `x > bound`, false where either is NaN (a NaN declines).
 fn clearly_above<T: Scalar>(x: T, bound: T) -> bool {
     x.partial_cmp(&bound) == Some(core::cmp::Ordering::Greater)
@@ -240,6 +270,7 @@ impl<'a, T: Scalar> Kernel<'a, T> {
             d: vec![T::zero(); n],
             set: Vec::with_capacity(n),
             pos: vec![usize::MAX; n],
+            vars: (0..n).map(Var::W).collect(),
             g: Vec::new(),
             mb: Vec::new(),
             rhs2: vec![T::zero(); 2 * n],
@@ -256,10 +287,12 @@ impl<'a, T: Scalar> Kernel<'a, T> {
             vg: vec![T::zero(); n],
             col_norm1,
             m_norm1,
+            block_symmetric: true,
             max_cond: 1.0,
             cond_now: None,
             inversions: 0,
             pivots_since_inversion: 0,
+            since_fresh: 0,
         })
     }
 
@@ -271,6 +304,7 @@ impl<'a, T: Scalar> Kernel<'a, T> {
         }
         for &i in &self.set {
             self.pos[i] = usize::MAX;
+            self.vars[i] = Var::W(i);
         }
         self.set.clear();
         if !set.is_empty() && self.g.is_empty() {
@@ -282,9 +316,14 @@ impl<'a, T: Scalar> Kernel<'a, T> {
                 return Err(Decline::NotEligible);
             }
             self.pos[i] = a;
+            self.vars[i] = Var::Z(i);
             self.set.push(i);
             self.mb[a * n..a * n + n].copy_from_slice(&self.cols[i][..n]);
         }
+        self.block_symmetric = set
+            .iter()
+            .enumerate()
+            .all(|(a, &i)| set[..a].iter().all(|&h| self.m(h, i) == self.m(i, h)));
         self.invert()
     }
 
@@ -405,16 +444,34 @@ impl<'a, T: Scalar> Kernel<'a, T> {
                 let seg = self.segment(at, false);
                 rec.0.push(seg);
             }
+            // values and slopes afresh from G every PRINCIPAL_REFRESH_PERIOD
+            // pivots and at every inversion; else updated by the pivot
+            let fresh = self.since_fresh + 1 >= PRINCIPAL_REFRESH_PERIOD
+                || self.pivots_since_inversion + 1 >= PRINCIPAL_REINVERT_PERIOD;
+            if !fresh {
+                self.advance(best, at);
+            }
             let (leaving, entering) = if self.pos[arg] != usize::MAX {
+                if !fresh {
+                    self.update_removal(arg);
+                }
                 self.remove(arg)?;
                 (Var::Z(arg), Var::W(arg))
             } else {
+                let dwj = self.dw[arg];
                 self.add(arg)?;
+                if !fresh {
+                    self.update_addition(arg, dwj);
+                }
                 (Var::W(arg), Var::Z(arg))
             };
             pivots += 1;
             self.lambda = at;
-            let residual = self.values()?;
+            let residual = if fresh {
+                self.values()?
+            } else {
+                self.values_updated()?
+            };
             if let Some(rec) = rec.as_deref_mut() {
                 let segment = rec.0.len();
                 rec.1.push(Breakpoint {
@@ -477,13 +534,19 @@ impl<T: Scalar> Kernel<'_, T> {
             view(&self.u, kk, 1, n),
             T::one(),
         );
-        gemm(
-            view_mut(&mut self.vg, kk, 1, n),
-            false,
-            g.transpose(),
-            view(&self.v, kk, 1, n),
-            T::one(),
-        );
+        let symmetric = self.block_symmetric && self.u[..kk] == self.v[..kk];
+        if symmetric {
+            // v = u and G = G' (to rounding): G' v = G u
+            self.vg[..kk].copy_from_slice(&self.gu[..kk]);
+        } else {
+            gemm(
+                view_mut(&mut self.vg, kk, 1, n),
+                false,
+                g.transpose(),
+                view(&self.v, kk, 1, n),
+                T::one(),
+            );
+        }
         let mjj = self.m(j, j);
         let (mut vgu, mut mag) = (T::zero(), mjj.abs());
         for a in 0..kk {
@@ -496,6 +559,7 @@ impl<T: Scalar> Kernel<'_, T> {
             return Err(Decline::SmallPivot);
         }
         let inv = T::one() / s;
+        self.block_symmetric = symmetric;
         // G + gu vg' / s, bordered by -gu / s, -vg' / s and 1 / s
         rank_one(&mut self.g, n, kk, &self.gu[..kk], &self.vg[..kk], inv);
         for b in 0..kk {
@@ -505,6 +569,7 @@ impl<T: Scalar> Kernel<'_, T> {
         self.g[kk * n + kk] = inv;
         self.mb[kk * n..kk * n + n].copy_from_slice(&self.cols[j][..n]);
         self.pos[j] = kk;
+        self.vars[j] = Var::Z(j);
         self.set.push(j);
         self.after_pivot()
     }
@@ -550,6 +615,7 @@ impl<T: Scalar> Kernel<'_, T> {
         }
         self.set.pop();
         self.pos[j] = usize::MAX;
+        self.vars[j] = Var::W(j);
         self.after_pivot()
     }
 
@@ -557,7 +623,7 @@ impl<T: Scalar> Kernel<'_, T> {
     fn after_pivot(&mut self) -> Result<(), Decline> {
         self.cond_now = None;
         self.pivots_since_inversion += 1;
-        if self.pivots_since_inversion >= crate::tolerance::PRINCIPAL_REINVERT_PERIOD {
+        if self.pivots_since_inversion >= PRINCIPAL_REINVERT_PERIOD {
             self.invert()?;
         }
         Ok(())
@@ -588,11 +654,19 @@ impl<T: Scalar> Kernel<'_, T> {
     /// of `B` (which the values must satisfy) and the condition bound of the
     /// complementary basis. One fresh inversion if those rows are off.
     fn values(&mut self) -> Result<Residual, Decline> {
+        self.since_fresh = 0;
         let first = self.values_once();
+        self.settle(first)
+    }
+
+    /// The rows of `B` checked after an evaluation `first`: on, or one fresh
+    /// inversion and evaluation.
+    fn settle(&mut self, first: Residual) -> Result<Residual, Decline> {
         let limit = PRINCIPAL_RESIDUAL_EPS * T::eps().to_f64();
         if first.equation <= limit {
             return self.checked(first);
         }
+        self.since_fresh = 0;
         self.invert()?;
         let again = self.values_once();
         if again.equation <= limit {
@@ -613,11 +687,7 @@ impl<T: Scalar> Kernel<'_, T> {
                 let mut g1 = T::zero();
                 let mut mb1 = T::zero();
                 for b in 0..kk {
-                    g1 = g1.max(
-                        self.g[b * n..b * n + kk]
-                            .iter()
-                            .fold(T::zero(), |a, &x| a + x.abs()),
-                    );
+                    g1 = g1.max(abs_sum(&self.g[b * n..b * n + kk]));
                     mb1 = mb1.max(self.col_norm1[self.set[b]]);
                 }
                 let c = T::one().max(mb1).to_f64()
@@ -634,6 +704,86 @@ impl<T: Scalar> Kernel<'_, T> {
             return Err(Decline::Negative);
         }
         Ok(r)
+    }
+
+    /// The values at the breakpoint `at`, `t` past the segment's start: the
+    /// basic `z` moved along their slopes (the blocking one is set to zero by
+    /// the pivot's update), `[q_B + L d_B | ...]` readied for the product of
+    /// [`Self::values_updated`].
+    fn advance(&mut self, t: T, at: T) {
+        let n = self.n;
+        for &i in &self.set {
+            self.z[i] += self.dz[i] * t;
+        }
+        // [w | dw] = [q + L d | dw] + M_{:,B} [z_B | delta]
+        for i in 0..n {
+            self.w2[i] = self.q[i] + at * self.d[i];
+            self.w2[n + i] = self.dw[i];
+        }
+    }
+
+    /// The update of a removal of `j` (before `G` is contracted): the slopes
+    /// of `z_B` change by `delta = -(dz_j / G_pp) G_{:,p}` (so `dz_j` becomes
+    /// zero), those of `w` by `M_{:,B} delta`; `w` afresh from `z_B` (with
+    /// `z_j = 0`), one product over `M_{:,B}`.
+    fn update_removal(&mut self, j: usize) {
+        let (n, kk) = (self.n, self.set.len());
+        let p = self.pos[j];
+        let c = -(self.dz[j] / self.g[p * n + p]);
+        self.z[j] = T::zero();
+        for a in 0..kk {
+            let i = self.set[a];
+            let delta = c * self.g[p * n + a];
+            self.zb2[a] = self.z[i];
+            self.zb2[n + a] = delta;
+            self.dz[i] += delta;
+        }
+        self.dz[j] = T::zero();
+        self.product(kk);
+    }
+
+    /// The update of an addition of `j` (after `G` is bordered), `dwj` the
+    /// slope `w_j` had: `delta = -dwj G'_{:,j}` (so the slope of `w_j`
+    /// becomes zero), as [`Self::update_removal`].
+    fn update_addition(&mut self, j: usize, dwj: T) {
+        let (n, kk) = (self.n, self.set.len());
+        let p = self.pos[j];
+        self.z[j] = T::zero();
+        self.dz[j] = T::zero();
+        for a in 0..kk {
+            let i = self.set[a];
+            let delta = -(dwj * self.g[p * n + a]);
+            self.zb2[a] = self.z[i];
+            self.zb2[n + a] = delta;
+            self.dz[i] += delta;
+        }
+        self.product(kk);
+    }
+
+    /// `w2 += M_{:,B} zb2` over the first `kk` columns of `M_{:,B}`.
+    fn product(&mut self, kk: usize) {
+        let n = self.n;
+        if kk > 0 {
+            gemm(
+                view_mut(&mut self.w2, n, 2, n),
+                true,
+                view(&self.mb, n, kk, n),
+                view(&self.zb2, kk, 2, n),
+                T::one(),
+            );
+        }
+    }
+
+    /// The values and slopes after an update ([`Self::advance`] and the
+    /// pivot's update), checked as [`Self::values`] checks fresh ones: the
+    /// rows of `B` as `w` afresh from the updated `z_B` leaves them.
+    fn values_updated(&mut self) -> Result<Residual, Decline> {
+        self.since_fresh += 1;
+        let n = self.n;
+        self.w.copy_from_slice(&self.w2[..n]);
+        self.dw.copy_from_slice(&self.w2[n..]);
+        let r = self.rows_and_signs();
+        self.settle(r)
     }
 
     fn values_once(&mut self) -> Residual {
@@ -675,6 +825,14 @@ impl<T: Scalar> Kernel<'_, T> {
         }
         self.w.copy_from_slice(&self.w2[..n]);
         self.dw.copy_from_slice(&self.w2[n..]);
+        self.rows_and_signs()
+    }
+
+    /// The residual of `B`'s rows in `w` (then zeroed with their slopes) and
+    /// the signs of the basic values.
+    fn rows_and_signs(&mut self) -> Residual {
+        let (n, kk) = (self.n, self.set.len());
+        let l = self.lambda;
         // B's rows: w_B must vanish (relative to the row's terms, as the
         // engine's breakpoint residuals)
         let mut eq = 0.0f64;
@@ -689,10 +847,23 @@ impl<T: Scalar> Kernel<'_, T> {
             self.dw[i] = T::zero();
         }
         // feasibility: every basic value nonnegative beyond its rounding
+        // (nothing to measure where no value is below zero, the usual case)
+        let mut feas = 0.0f64;
+        let negative = self
+            .z
+            .iter()
+            .chain(self.w.iter())
+            .fold(false, |a, &x| a | (x < T::zero()));
+        if !negative {
+            return Residual {
+                equation: eq,
+                feasibility: feas,
+                complementarity: 0.0,
+            };
+        }
         let zmax = self.z.iter().fold(T::one(), |a, &x| a.max(x.abs()));
         let wmax = self.w.iter().fold(T::one(), |a, &x| a.max(x.abs()));
         let tol = T::from_f64(PRINCIPAL_RESIDUAL_EPS) * T::eps();
-        let mut feas = 0.0f64;
         for i in 0..n {
             if self.z[i] < -(tol * zmax) {
                 feas = feas.max((-self.z[i] / zmax).to_f64());
@@ -742,14 +913,6 @@ impl<T: Scalar> Kernel<'_, T> {
 
     /// The complementary basis: `Z(i)` for `i` in `B`, else `W(i)`.
     pub(crate) fn basis(&self) -> Vec<Var> {
-        (0..self.n)
-            .map(|i| {
-                if self.pos[i] != usize::MAX {
-                    Var::Z(i)
-                } else {
-                    Var::W(i)
-                }
-            })
-            .collect()
+        self.vars.clone()
     }
 }

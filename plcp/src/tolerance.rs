@@ -28,7 +28,7 @@
 //! | underflow | a datum is rejected ([`crate::PlcpError::Underflow`]) | nonzero and below [`crate::Scalar::min_normal`] in the working type |
 //! | doubtful success | with `Settings::escalate`, a path that ends `reached`, `unbounded_ray` or `secondary_ray` in `f32`/`f64` on a basis whose condition estimate times `eps` exceeded [`ESCALATE_COND_EPS`] (`1e-5`: fewer than about five digits left) is continued in `fx128` like an `ill_conditioned` one |
 //! | restart check | an `fx128` warm restart inside segment `k` must be feasible back to the segment's start `L_k` (else events lie between: the basis is not the path's there) | a `z` or `w` negative at `L_k` must reach zero within `sqrt(eps) * max(1, abs(L_k), segment)` of `L_k` (`eps` of the working precision: what its breakpoint can be off by) |
-//! | principal pivoting (fast path) | `plcp/src/principal.rs` hands a dense standard-form problem back to the general engine | two ratios, a ratio and zero, or a ratio and `L_max - L` within `PRINCIPAL_TIE_EPS * eps * max(1, abs(L), abs(L_max))` ([`PRINCIPAL_TIE_EPS`] `= 1e6`), or a blocking rate within `PRINCIPAL_TIE_EPS * eps` of the segment's largest rate; a pivot (`s = M_jj - M_jB G M_Bj` or `G_jj`) not above `PRINCIPAL_PIVOT_EPS * eps` times the magnitude of its terms ([`PRINCIPAL_PIVOT_EPS`] `= 1e6`); the rows of `B` off by more than `PRINCIPAL_RESIDUAL_EPS * eps` relative after a fresh inversion, or a basic value below `-PRINCIPAL_RESIDUAL_EPS * eps * max(1, max abs(x))` ([`PRINCIPAL_RESIDUAL_EPS`] `= 1e3`); the bound `max(1, max_B abs(M_j)_1) max(1, abs(G)_1 (1 + abs(M)_1))` of the basis' 1-norm condition times `eps` above [`PRINCIPAL_MAX_COND_EPS`] (`1e-8`); `G` inverted afresh every [`PRINCIPAL_REINVERT_PERIOD`] pivots; orders above [`PRINCIPAL_MAX_N`] |
+//! | principal pivoting (fast path) | `plcp/src/principal.rs` hands a dense standard-form problem back to the general engine | two ratios, a ratio and zero, or a ratio and `L_max - L` within `PRINCIPAL_TIE_EPS * eps * max(1, abs(L), abs(L_max))` ([`PRINCIPAL_TIE_EPS`] `= 1e6`), or a blocking rate within `PRINCIPAL_TIE_EPS * eps` of the segment's largest rate; a pivot (`s = M_jj - M_jB G M_Bj` or `G_jj`) not above `PRINCIPAL_PIVOT_EPS * eps` times the magnitude of its terms ([`PRINCIPAL_PIVOT_EPS`] `= 1e6`); the rows of `B` off by more than `PRINCIPAL_RESIDUAL_EPS * eps` relative after a fresh inversion, or a basic value below `-PRINCIPAL_RESIDUAL_EPS * eps * max(1, max abs(x))` ([`PRINCIPAL_RESIDUAL_EPS`] `= 1e3`); the bound `max(1, max_B abs(M_j)_1) max(1, abs(G)_1 (1 + abs(M)_1))` of the basis' 1-norm condition times `eps` above [`PRINCIPAL_MAX_COND_EPS`] (`1e-8`); `G` inverted afresh every [`PRINCIPAL_REINVERT_PERIOD`] pivots, the values and slopes computed afresh every [`PRINCIPAL_REFRESH_PERIOD`] (updated by a column of `G` between); orders above [`PRINCIPAL_MAX_N`] |
 //! | breakpoint re-intersection | Lemke on the Schur reduction: a breakpoint moves to where the polished segment's leaving variable is zero | only by `<= sqrt(eps) * max(1, abs(L))` |
 
 use crate::scalar::Scalar;
@@ -265,6 +265,13 @@ pub const PRINCIPAL_MAX_COND_EPS: f64 = 1e-8;
 /// Principal pivoting: the explicit inverse is computed afresh (LU with
 /// partial pivoting) every this many pivots.
 pub const PRINCIPAL_REINVERT_PERIOD: usize = 64;
+
+/// Principal pivoting: between fresh evaluations the basic `z` and the
+/// slopes after a pivot are updated by the pivot's column of `G` (the values
+/// `w` are recomputed at every pivot, so each breakpoint's residual is
+/// measured afresh); every this many pivots, and after every inversion, all
+/// of them are computed afresh from `G`.
+pub const PRINCIPAL_REFRESH_PERIOD: usize = 8;
 
 /// Principal pivoting: the largest order the fast path takes (above it the
 /// general engine's blocked products are faster; measured in
