@@ -808,14 +808,8 @@ impl<T: Scalar> Kernel<'_, T> {
                 view(&self.rhs2, kk, 2, n),
                 -T::one(),
             );
-            gemm(
-                view_mut(&mut self.w2, n, 2, n),
-                true,
-                view(&self.mb, n, kk, n),
-                view(&self.zb2, kk, 2, n),
-                T::one(),
-            );
         }
+        self.product(kk);
         self.z.iter_mut().for_each(|x| *x = T::zero());
         self.dz.iter_mut().for_each(|x| *x = T::zero());
         for a in 0..kk {
