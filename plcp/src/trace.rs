@@ -193,7 +193,7 @@ fn principal<T: Scalar>(
     } else if !problem.lambda_max().is_some_and(|l| l.is_finite()) {
         "not tried: no finite L_max"
     } else if problem.n() > crate::tolerance::PRINCIPAL_MAX_N {
-        "not tried: order above PRINCIPAL_MAX_N = 400"
+        "not tried: order above PRINCIPAL_MAX_N = 800"
     } else {
         ""
     };

@@ -63,10 +63,13 @@ fn family(n: usize, vals: &[f64], shift: f64, skew: f64, lmax: f64) -> Plcp<f64>
     let mut it = vals.iter().cycle().copied();
     let b = Mat::<f64>::from_fn(n, n, |_, _| 2.0 * it.next().unwrap() - 1.0);
     let k = Mat::<f64>::from_fn(n, n, |_, _| it.next().unwrap() - 0.5);
+    // B' by columns: the sums below run down contiguous columns
+    let bt = b.transpose().to_owned();
     let m = Mat::<f64>::from_fn(n, n, |i, j| {
+        let (ci, cj) = (bt.col(i), bt.col(j));
         let mut s = 0.0;
         for l in 0..n {
-            s += b[(i, l)] * b[(j, l)];
+            s += ci[l] * cj[l];
         }
         s / n as f64 + if i == j { shift } else { 0.0 } + skew * (k[(i, j)] - k[(j, i)])
     });
@@ -252,11 +255,14 @@ fn declined_cases_go_to_the_engine() {
     assert_eq!(obs.path.segments.len(), 2);
     // above the order cap (`tolerance::PRINCIPAL_MAX_N`)
     let vals: Vec<f64> = (0..199).map(|i| ((i * 37 % 101) as f64) / 101.0).collect();
-    let big = family(401, &vals, 0.1, 0.0, 1.0);
+    let big = family(plcp::tolerance::PRINCIPAL_MAX_N + 1, &vals, 0.1, 0.0, 0.05);
     assert_eq!(method(&big, &s), "lemke");
     assert_eq!(
         why(&big, &s),
-        "not tried: order above PRINCIPAL_MAX_N = 400"
+        format!(
+            "not tried: order above PRINCIPAL_MAX_N = {}",
+            plcp::tolerance::PRINCIPAL_MAX_N
+        )
     );
     // f32 and the other bases are the engine's
     let p32 = Plcp::new(
@@ -279,4 +285,17 @@ fn declined_cases_go_to_the_engine() {
         why(&p, &dense),
         "not tried: a basis other than the default block basis asked for"
     );
+}
+
+/// Between the old order cap (400) and the present one the fast path answers
+/// a monotone problem with many pivots and its path is the engine's.
+#[test]
+fn a_mid_size_problem_takes_the_fast_path() {
+    let n = 600;
+    assert!(n <= plcp::tolerance::PRINCIPAL_MAX_N);
+    let vals: Vec<f64> = (0..997).map(|i| ((i * 389 % 997) as f64) / 997.0).collect();
+    let p = family(n, &vals, 0.1, 0.0, 1.0);
+    assert!(compare(&p), "{}", why(&p, &Settings::default()));
+    let path = solve(&p, &Settings::default()).unwrap();
+    assert!(path.info.pivots >= 50, "{} pivots", path.info.pivots);
 }

@@ -44,8 +44,11 @@ fn solve_with(n: usize, threads: Option<usize>) -> plcp::Path<f64> {
         .unwrap()
         .with_range(0.0, Some(50.0))
         .unwrap();
+    // the general engine's block basis (the fast path, which takes dense
+    // problems up to `PRINCIPAL_MAX_N` = 800, runs on the calling thread)
     let settings = Settings::<f64> {
         threads,
+        principal: false,
         ..Settings::default()
     };
     plcp::solve(&problem, &settings).unwrap()
