@@ -11,7 +11,7 @@
 //! | tie tolerance | two ratios `t_i`, `t_j` of the minimum-ratio test are tied (and go to the lexicographic rule) | `abs(t_i - t_j) <= tie_tol_eps * eps * max(1, abs(t_min), scale)` (default `tie_tol_eps = 1e3`) |
 //! | lexicographic tie | two scaled rows of the basis inverse are equal in an entry | same tie tolerance, relative to the largest entry compared |
 //! | zero step | a step is degenerate (zero length) | ratio `<= tie tolerance` |
-//! | zero in a row of `B^{-1}` | the sparse basis hands the lexicographic rule rows of `B^{-1}`; an entry is zero | `abs(v) <= ROW_NOISE_EPS * eps * max abs(row)` ([`ROW_NOISE_EPS`] `= 1e3`) |
+//! | zero in a row of `B^{-1}` | the sparse basis hands the lexicographic rule rows of `B^{-1}` (the other bases do in a long tie, after as many columns as rows tied, at least 4: `src/basis/lex.rs`); an entry is zero | `abs(v) <= ROW_NOISE_EPS * eps * max abs(row)` ([`ROW_NOISE_EPS`] `= 1e3`) |
 //! | sparse full rank | Wolfe's start skips the dense LU of a sparse free block | sparse LU succeeds and `cond_1 * rank_tol(p, 1) < 1` |
 //! | rank of the free block | a pivot of the full-pivoting LU counts | `abs(u_kk) > sqrt(eps) * max abs(u_11)`... see [`rank_tol`] |
 //! | condition | a basis is ill-conditioned | `cond_1(B D) * eps > max_cond_eps` (default `1e-2`), `D` scaling the columns of `B` to 1-norm about one (powers of two; the estimate is then within a factor `dim` of the best column scaling, van der Sluis) |
