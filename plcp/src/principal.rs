@@ -80,6 +80,8 @@ pub(crate) struct Kernel<'a, T: Scalar> {
     v: Vec<T>,
     gu: Vec<T>,
     vg: Vec<T>,
+    /// `|G_{:,b}|_1` of `G`'s columns, kept with `G` (the condition bound)
+    gsum: Vec<T>,
     /// `||M_{:,j}||_1` of every column, and their largest (`||M||_1`)
     col_norm1: Vec<T>,
     m_norm1: T,
@@ -197,35 +199,161 @@ fn view_mut<T: Scalar>(buf: &mut [T], k: usize, c: usize, n: usize) -> faer::Mat
     )
 }
 
-/// `dst (+)= alpha a b` on the calling thread.
-fn gemm<T: Scalar>(
-    dst: faer::MatMut<'_, T>,
+/// `dst[:rows, :cols] (+)= alpha a[:rows, :k] b[:k, :cols]` (all
+/// column-major, stride `n`) on the calling thread.
+fn axpys<T: Scalar>(
+    dst: &mut [T],
     add: bool,
-    a: MatRef<'_, T>,
-    b: MatRef<'_, T>,
+    a: &[T],
+    b: &[T],
     alpha: T,
+    (rows, k, cols, n): (usize, usize, usize, usize),
 ) {
+    if k == 0 {
+        if !add {
+            for c in 0..cols {
+                dst[c * n..c * n + rows].iter_mut().for_each(|x| *x = T::zero());
+            }
+        }
+        return;
+    }
     let accum = if add {
         faer::Accum::Add
     } else {
         faer::Accum::Replace
     };
-    faer::linalg::matmul::matmul(dst, accum, a, b, alpha, faer::Par::Seq);
+    faer::linalg::matmul::matmul(
+        view_mut(dst, rows, cols, n),
+        accum,
+        view(a, rows, k, n),
+        view(b, k, cols, n),
+        alpha,
+        faer::Par::Seq,
+    );
 }
 
-/// `G[:k, :k] += alpha x y'` (column-major, stride `n`).
-fn rank_one<T: Scalar>(g: &mut [T], n: usize, k: usize, x: &[T], y: &[T], alpha: T) {
-    gemm(
-        view_mut(g, k, k, n),
-        true,
-        view(x, k, 1, n),
-        view(y, k, 1, n).transpose(),
+/// `G[:k, :k] += x (alpha y)'` (column-major, stride `n`), and the
+/// absolute sums of the updated columns over their rows other than `skip`
+/// into `sums` (the condition bound's `|G|_1`, kept with `G`: no pass of
+/// its own). Pulp's dispatch as [`axpys`].
+#[allow(clippy::too_many_arguments)]
+fn rank_one<T: Scalar>(
+    g: &mut [T],
+    n: usize,
+    k: usize,
+    x: &[T],
+    y: &[T],
+    alpha: T,
+    skip: usize,
+    sums: &mut [T],
+) {
+    if k == 0 {
+        return;
+    }
+    pulp::Arch::new().dispatch(RankOne {
+        g,
+        n,
+        k,
+        x,
+        y,
         alpha,
-    );
+        skip,
+        sums,
+    });
+}
+
+struct RankOne<'a, T: Scalar> {
+    g: &'a mut [T],
+    n: usize,
+    k: usize,
+    x: &'a [T],
+    y: &'a [T],
+    alpha: T,
+    skip: usize,
+    sums: &'a mut [T],
+}
+
+impl<T: Scalar> pulp::WithSimd for RankOne<'_, T> {
+    type Output = ();
+
+    #[inline(always)]
+    fn with_simd<S: pulp::Simd>(self, _simd: S) {
+        let Self {
+            g,
+            n,
+            k,
+            x,
+            y,
+            alpha,
+            skip,
+            sums,
+        } = self;
+        let x = &x[..k];
+        for b in 0..k {
+            let c = alpha * y[b];
+            let col = &mut g[b * n..b * n + k];
+            for (gv, &xv) in col.iter_mut().zip(x) {
+                *gv += xv * c;
+            }
+            sums[b] = if skip < k {
+                abs_sum(&col[..skip]) + abs_sum(&col[skip + 1..])
+            } else {
+                abs_sum(col)
+            };
+        }
+    }
+}
+
+/// `vg[b] = G_{:,b}' v` for `G`'s first `k` columns (over their first `k`
+/// rows), each in four running sums; pulp's dispatch as [`axpys`].
+fn col_dots<T: Scalar>(g: &[T], n: usize, k: usize, v: &[T], vg: &mut [T]) {
+    struct Pass<'a, T: Scalar>(&'a [T], usize, usize, &'a [T], &'a mut [T]);
+    impl<T: Scalar> pulp::WithSimd for Pass<'_, T> {
+        type Output = ();
+        #[inline(always)]
+        fn with_simd<S: pulp::Simd>(self, _simd: S) {
+            let Pass(g, n, k, v, vg) = self;
+            let v = &v[..k];
+            for b in 0..k {
+                let col = &g[b * n..b * n + k];
+                let mut acc = [T::zero(); 4];
+                let (mut cc, mut vc) = (col.chunks_exact(4), v.chunks_exact(4));
+                for (c, w) in (&mut cc).zip(&mut vc) {
+                    for l in 0..4 {
+                        acc[l] += c[l] * w[l];
+                    }
+                }
+                let mut s = (acc[0] + acc[1]) + (acc[2] + acc[3]);
+                for (&c, &w) in cc.remainder().iter().zip(vc.remainder()) {
+                    s += c * w;
+                }
+                vg[b] = s;
+            }
+        }
+    }
+    pulp::Arch::new().dispatch(Pass(g, n, k, v, vg));
+}
+
+/// The absolute sums of `G`'s first `k` columns (over their first `k`
+/// rows) into `sums`, pulp's dispatch as [`axpys`].
+fn col_sums<T: Scalar>(g: &[T], n: usize, k: usize, sums: &mut [T]) {
+    struct Pass<'a, T: Scalar>(&'a [T], usize, usize, &'a mut [T]);
+    impl<T: Scalar> pulp::WithSimd for Pass<'_, T> {
+        type Output = ();
+        #[inline(always)]
+        fn with_simd<S: pulp::Simd>(self, _simd: S) {
+            let Pass(g, n, k, sums) = self;
+            for b in 0..k {
+                sums[b] = abs_sum(&g[b * n..b * n + k]);
+            }
+        }
+    }
+    pulp::Arch::new().dispatch(Pass(g, n, k, sums));
 }
 
 /// `sum_i abs(x_i)`, in four running sums (the order of a bound's terms
 /// does not matter; four lanes let the compiler vectorise).
+#[inline(always)]
 fn abs_sum<T: Scalar>(x: &[T]) -> T {
     let mut acc = [T::zero(); 4];
     let mut chunks = x.chunks_exact(4);
@@ -285,6 +413,7 @@ impl<'a, T: Scalar> Kernel<'a, T> {
             v: vec![T::zero(); n],
             gu: vec![T::zero(); n],
             vg: vec![T::zero(); n],
+            gsum: vec![T::zero(); n],
             col_norm1,
             m_norm1,
             block_symmetric: true,
@@ -526,26 +655,13 @@ impl<T: Scalar> Kernel<'_, T> {
             self.u[a] = self.m(self.set[a], j);
             self.v[a] = self.m(j, self.set[a]);
         }
-        let g = view(&self.g, kk, kk, n);
-        gemm(
-            view_mut(&mut self.gu, kk, 1, n),
-            false,
-            g,
-            view(&self.u, kk, 1, n),
-            T::one(),
-        );
+        axpys(&mut self.gu, false, &self.g, &self.u, T::one(), (kk, kk, 1, n));
         let symmetric = self.block_symmetric && self.u[..kk] == self.v[..kk];
         if symmetric {
             // v = u and G = G' (to rounding): G' v = G u
             self.vg[..kk].copy_from_slice(&self.gu[..kk]);
         } else {
-            gemm(
-                view_mut(&mut self.vg, kk, 1, n),
-                false,
-                g.transpose(),
-                view(&self.v, kk, 1, n),
-                T::one(),
-            );
+            col_dots(&self.g, n, kk, &self.v, &mut self.vg);
         }
         let mjj = self.m(j, j);
         let (mut vgu, mut mag) = (T::zero(), mjj.abs());
@@ -561,12 +677,24 @@ impl<T: Scalar> Kernel<'_, T> {
         let inv = T::one() / s;
         self.block_symmetric = symmetric;
         // G + gu vg' / s, bordered by -gu / s, -vg' / s and 1 / s
-        rank_one(&mut self.g, n, kk, &self.gu[..kk], &self.vg[..kk], inv);
+        rank_one(
+            &mut self.g,
+            n,
+            kk,
+            &self.gu,
+            &self.vg,
+            inv,
+            usize::MAX,
+            &mut self.gsum,
+        );
         for b in 0..kk {
-            self.g[b * n + kk] = -(self.vg[b] * inv);
+            let gb = -(self.vg[b] * inv);
+            self.g[b * n + kk] = gb;
+            self.gsum[b] += gb.abs();
             self.g[kk * n + b] = -(self.gu[b] * inv);
         }
         self.g[kk * n + kk] = inv;
+        self.gsum[kk] = abs_sum(&self.g[kk * n..kk * n + kk + 1]);
         self.mb[kk * n..kk * n + n].copy_from_slice(&self.cols[j][..n]);
         self.pos[j] = kk;
         self.vars[j] = Var::Z(j);
@@ -595,9 +723,11 @@ impl<T: Scalar> Kernel<'_, T> {
             &mut self.g,
             n,
             kk,
-            &self.u[..kk],
-            &self.v[..kk],
+            &self.u,
+            &self.v,
             -(T::one() / gpp),
+            p,
+            &mut self.gsum,
         );
         // the last index takes position p
         let last = kk - 1;
@@ -608,6 +738,7 @@ impl<T: Scalar> Kernel<'_, T> {
             for b in 0..kk {
                 self.g[b * n + p] = self.g[b * n + last];
             }
+            self.gsum[p] = self.gsum[last];
             self.mb.copy_within(last * n..last * n + n, p * n);
             let moved = self.set[last];
             self.set[p] = moved;
@@ -647,6 +778,7 @@ impl<T: Scalar> Kernel<'_, T> {
                 self.g[b * n + a] = inv[(a, b)];
             }
         }
+        col_sums(&self.g, n, kk, &mut self.gsum);
         Ok(())
     }
 
@@ -683,11 +815,12 @@ impl<T: Scalar> Kernel<'_, T> {
         let cond = match self.cond_now {
             Some(c) => c,
             None => {
-                let (n, kk) = (self.n, self.set.len());
+                // (|G|_1 from the column sums kept with G)
+                let kk = self.set.len();
                 let mut g1 = T::zero();
                 let mut mb1 = T::zero();
                 for b in 0..kk {
-                    g1 = g1.max(abs_sum(&self.g[b * n..b * n + kk]));
+                    g1 = g1.max(self.gsum[b]);
                     mb1 = mb1.max(self.col_norm1[self.set[b]]);
                 }
                 let c = T::one().max(mb1).to_f64()
@@ -763,15 +896,7 @@ impl<T: Scalar> Kernel<'_, T> {
     /// `w2 += M_{:,B} zb2` over the first `kk` columns of `M_{:,B}`.
     fn product(&mut self, kk: usize) {
         let n = self.n;
-        if kk > 0 {
-            gemm(
-                view_mut(&mut self.w2, n, 2, n),
-                true,
-                view(&self.mb, n, kk, n),
-                view(&self.zb2, kk, 2, n),
-                T::one(),
-            );
-        }
+        axpys(&mut self.w2, true, &self.mb, &self.zb2, T::one(), (n, kk, 2, n));
     }
 
     /// The values and slopes after an update ([`Self::advance`] and the
@@ -800,15 +925,7 @@ impl<T: Scalar> Kernel<'_, T> {
             self.w2[i] = self.q[i] + l * self.d[i];
             self.w2[n + i] = self.d[i];
         }
-        if kk > 0 {
-            gemm(
-                view_mut(&mut self.zb2, kk, 2, n),
-                false,
-                view(&self.g, kk, kk, n),
-                view(&self.rhs2, kk, 2, n),
-                -T::one(),
-            );
-        }
+        axpys(&mut self.zb2, false, &self.g, &self.rhs2, -T::one(), (kk, kk, 2, n));
         self.product(kk);
         self.z.iter_mut().for_each(|x| *x = T::zero());
         self.dz.iter_mut().for_each(|x| *x = T::zero());
