@@ -97,6 +97,116 @@ pub(crate) struct Kernel<'a, T: Scalar> {
     since_fresh: usize,
 }
 
+/// A kernel's buffers kept on its thread after it is dropped, for the next
+/// kernel (`f64` only): a small solve paid about 18 allocations and the
+/// zeroing of `G` and `M_{:,B}` (`n^2` each) for every call. Holds at most
+/// one kernel's buffers a thread (`2 n^2 + 18 n` numbers, 2.6 MB at the
+/// order cap).
+struct Spare<T: Scalar> {
+    q: Vec<T>,
+    d: Vec<T>,
+    set: Vec<usize>,
+    pos: Vec<usize>,
+    vars: Vec<Var>,
+    g: Vec<T>,
+    mb: Vec<T>,
+    rhs2: Vec<T>,
+    zb2: Vec<T>,
+    w2: Vec<T>,
+    z: Vec<T>,
+    dz: Vec<T>,
+    w: Vec<T>,
+    dw: Vec<T>,
+    u: Vec<T>,
+    v: Vec<T>,
+    gu: Vec<T>,
+    vg: Vec<T>,
+    gsum: Vec<T>,
+    col_norm1: Vec<T>,
+}
+
+impl<T: Scalar> Default for Spare<T> {
+    fn default() -> Self {
+        let e = Vec::new;
+        Spare {
+            q: e(),
+            d: e(),
+            set: Vec::new(),
+            pos: Vec::new(),
+            vars: Vec::new(),
+            g: e(),
+            mb: e(),
+            rhs2: e(),
+            zb2: e(),
+            w2: e(),
+            z: e(),
+            dz: e(),
+            w: e(),
+            dw: e(),
+            u: e(),
+            v: e(),
+            gu: e(),
+            vg: e(),
+            gsum: e(),
+            col_norm1: e(),
+        }
+    }
+}
+
+std::thread_local! {
+    static SPARE: core::cell::RefCell<Spare<f64>> = core::cell::RefCell::new(Spare::default());
+}
+
+impl<T: Scalar> Spare<T> {
+    /// Swaps `self` with the thread's spare buffers (`f64` only; else, or
+    /// where the thread's are in use or gone, nothing).
+    fn swap_with_thread(&mut self) {
+        if let Some(mine) = (self as &mut dyn core::any::Any).downcast_mut::<Spare<f64>>() {
+            let _ = SPARE.try_with(|s| {
+                if let Ok(mut s) = s.try_borrow_mut() {
+                    core::mem::swap(&mut *s, mine);
+                }
+            });
+        }
+    }
+
+    fn take() -> Self {
+        let mut sp = Spare::default();
+        sp.swap_with_thread();
+        sp
+    }
+}
+
+impl<T: Scalar> Drop for Kernel<'_, T> {
+    fn drop(&mut self) {
+        use std::mem::take as t;
+        let mut sp = Spare {
+            q: t(&mut self.q),
+            d: t(&mut self.d),
+            set: t(&mut self.set),
+            pos: t(&mut self.pos),
+            vars: t(&mut self.vars),
+            g: t(&mut self.g),
+            mb: t(&mut self.mb),
+            rhs2: t(&mut self.rhs2),
+            zb2: t(&mut self.zb2),
+            w2: t(&mut self.w2),
+            z: t(&mut self.z),
+            dz: t(&mut self.dz),
+            w: t(&mut self.w),
+            dw: t(&mut self.dw),
+            u: t(&mut self.u),
+            v: t(&mut self.v),
+            gu: t(&mut self.gu),
+            vg: t(&mut self.vg),
+            gsum: t(&mut self.gsum),
+            col_norm1: t(&mut self.col_norm1),
+        };
+        // (the thread's previous spare buffers are freed with `sp`)
+        sp.swap_with_thread();
+    }
+}
+
 /// Why the kernel handed a problem back (for tests and the trace log).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub(crate) enum Decline {
@@ -386,34 +496,78 @@ impl<'a, T: Scalar> Kernel<'a, T> {
         for j in 0..n {
             cols.push(m.col(j).try_as_col_major()?.as_slice());
         }
-        let col_norm1: Vec<T> = cols
-            .iter()
-            .map(|c| c.iter().fold(T::zero(), |a, &x| a + x.abs()))
-            .collect();
+        // the buffers of the last kernel dropped on this thread, if any
+        // (their contents are never read before they are written: `G` and
+        // `M_{:,B}` only over the current `B`)
+        let mut sp = Spare::<T>::take();
+        let mut col_norm1 = std::mem::take(&mut sp.col_norm1);
+        col_norm1.clear();
+        col_norm1.extend(
+            cols.iter()
+                .map(|c| c.iter().fold(T::zero(), |a, &x| a + x.abs())),
+        );
         let m_norm1 = col_norm1.iter().fold(T::zero(), |a, &x| a.max(x));
+        let sized = |v: &mut Vec<T>, len: usize| {
+            let mut v = std::mem::take(v);
+            v.clear();
+            v.resize(len, T::zero());
+            v
+        };
+        let (q, d) = (sized(&mut sp.q, n), sized(&mut sp.d, n));
+        let (rhs2, zb2, w2) = (
+            sized(&mut sp.rhs2, 2 * n),
+            sized(&mut sp.zb2, 2 * n),
+            sized(&mut sp.w2, 2 * n),
+        );
+        let (z, dz, w, dw) = (
+            sized(&mut sp.z, n),
+            sized(&mut sp.dz, n),
+            sized(&mut sp.w, n),
+            sized(&mut sp.dw, n),
+        );
+        let (u, v, gu, vg, gsum) = (
+            sized(&mut sp.u, n),
+            sized(&mut sp.v, n),
+            sized(&mut sp.gu, n),
+            sized(&mut sp.vg, n),
+            sized(&mut sp.gsum, n),
+        );
+        let (mut g, mut mb) = (std::mem::take(&mut sp.g), std::mem::take(&mut sp.mb));
+        if g.len() != n * n || mb.len() != n * n {
+            g.clear();
+            mb.clear();
+        }
+        let mut set = std::mem::take(&mut sp.set);
+        set.clear();
+        let mut pos = std::mem::take(&mut sp.pos);
+        pos.clear();
+        pos.resize(n, usize::MAX);
+        let mut vars = std::mem::take(&mut sp.vars);
+        vars.clear();
+        vars.extend((0..n).map(Var::W));
         Some(Kernel {
             n,
             cols,
-            q: vec![T::zero(); n],
-            d: vec![T::zero(); n],
-            set: Vec::with_capacity(n),
-            pos: vec![usize::MAX; n],
-            vars: (0..n).map(Var::W).collect(),
-            g: Vec::new(),
-            mb: Vec::new(),
-            rhs2: vec![T::zero(); 2 * n],
-            zb2: vec![T::zero(); 2 * n],
-            w2: vec![T::zero(); 2 * n],
-            z: vec![T::zero(); n],
-            dz: vec![T::zero(); n],
-            w: vec![T::zero(); n],
-            dw: vec![T::zero(); n],
+            q,
+            d,
+            set,
+            pos,
+            vars,
+            g,
+            mb,
+            rhs2,
+            zb2,
+            w2,
+            z,
+            dz,
+            w,
+            dw,
             lambda: T::zero(),
-            u: vec![T::zero(); n],
-            v: vec![T::zero(); n],
-            gu: vec![T::zero(); n],
-            vg: vec![T::zero(); n],
-            gsum: vec![T::zero(); n],
+            u,
+            v,
+            gu,
+            vg,
+            gsum,
             col_norm1,
             m_norm1,
             block_symmetric: true,
@@ -436,9 +590,9 @@ impl<'a, T: Scalar> Kernel<'a, T> {
             self.vars[i] = Var::W(i);
         }
         self.set.clear();
-        if !set.is_empty() && self.g.is_empty() {
-            self.g = vec![T::zero(); n * n];
-            self.mb = vec![T::zero(); n * n];
+        if !set.is_empty() && self.g.len() < n * n {
+            self.g.resize(n * n, T::zero());
+            self.mb.resize(n * n, T::zero());
         }
         for (a, &i) in set.iter().enumerate() {
             if self.pos[i] != usize::MAX {
@@ -480,9 +634,11 @@ impl<'a, T: Scalar> Kernel<'a, T> {
         if q.nrows() != n || d.nrows() != n {
             return Err(Decline::NotEligible);
         }
-        for i in 0..n {
-            self.q[i] = q[i];
-            self.d[i] = d[i];
+        for (dst, &x) in self.q[..n].iter_mut().zip(q.iter()) {
+            *dst = x;
+        }
+        for (dst, &x) in self.d[..n].iter_mut().zip(d.iter()) {
+            *dst = x;
         }
         self.lambda = lambda0;
         // a basic value below zero here is a start that is not feasible
@@ -492,14 +648,14 @@ impl<'a, T: Scalar> Kernel<'a, T> {
         })?;
         let tie = T::from_f64(PRINCIPAL_TIE_EPS) * T::eps();
         let zmax = self.z.iter().fold(T::one(), |a, &x| a.max(x.abs()));
+        let (pos, z, w) = (&self.pos[..n], &self.z[..n], &self.w[..n]);
+        let (qs, ds) = (&self.q[..n], &self.d[..n]);
         for i in 0..n {
-            let ok = if self.pos[i] != usize::MAX {
-                clearly_above(self.z[i], tie * zmax)
+            let ok = if pos[i] != usize::MAX {
+                clearly_above(z[i], tie * zmax)
             } else {
-                let s = T::one()
-                    .max(self.q[i].abs())
-                    .max((lambda0 * self.d[i]).abs());
-                clearly_above(self.w[i], tie * s)
+                let s = T::one().max(qs[i].abs()).max((lambda0 * ds[i]).abs());
+                clearly_above(w[i], tie * s)
             };
             if !ok {
                 return Err(Decline::StartNotInterior);
@@ -525,11 +681,14 @@ impl<'a, T: Scalar> Kernel<'a, T> {
             // ratio test: the smallest step of L to a zero of a basic variable
             let (mut best, mut second, mut arg) = (T::max_value(), T::max_value(), usize::MAX);
             let (mut rate_max, mut rate_arg) = (T::zero(), T::zero());
+            // (over slices of length n: no bounds checks in the loop)
+            let (pos, z, dz) = (&self.pos[..n], &self.z[..n], &self.dz[..n]);
+            let (w, dw) = (&self.w[..n], &self.dw[..n]);
             for i in 0..n {
-                let (x, dx) = if self.pos[i] != usize::MAX {
-                    (self.z[i], self.dz[i])
+                let (x, dx) = if pos[i] != usize::MAX {
+                    (z[i], dz[i])
                 } else {
-                    (self.w[i], self.dw[i])
+                    (w[i], dw[i])
                 };
                 rate_max = rate_max.max(dx.abs());
                 if dx < T::zero() {
@@ -646,9 +805,9 @@ impl<T: Scalar> Kernel<'_, T> {
     /// Adds `j` to `B`: `G` bordered by `s = M_jj - v G u`.
     fn add(&mut self, j: usize) -> Result<(), Decline> {
         let (n, kk) = (self.n, self.set.len());
-        if self.g.is_empty() {
-            self.g = vec![T::zero(); n * n];
-            self.mb = vec![T::zero(); n * n];
+        if self.g.len() < n * n {
+            self.g.resize(n * n, T::zero());
+            self.mb.resize(n * n, T::zero());
         }
         // u = M_Bj, v = M_jB; gu = G u, vg = G' v
         for a in 0..kk {
@@ -849,10 +1008,11 @@ impl<T: Scalar> Kernel<'_, T> {
             self.z[i] += self.dz[i] * t;
         }
         // [w | dw] = [q + L d | dw] + M_{:,B} [z_B | delta]
-        for i in 0..n {
-            self.w2[i] = self.q[i] + at * self.d[i];
-            self.w2[n + i] = self.dw[i];
+        let (w2, dw2) = self.w2.split_at_mut(n);
+        for ((w2, &q), &d) in w2.iter_mut().zip(&self.q[..n]).zip(&self.d[..n]) {
+            *w2 = q + at * d;
         }
+        dw2[..n].copy_from_slice(&self.dw[..n]);
     }
 
     /// The update of a removal of `j` (before `G` is contracted): the slopes
@@ -921,10 +1081,11 @@ impl<T: Scalar> Kernel<'_, T> {
             self.rhs2[n + a] = self.d[i];
         }
         // [w | dw] = [q + L d | d] + M_{:,B} [z_B | dz_B]
-        for i in 0..n {
-            self.w2[i] = self.q[i] + l * self.d[i];
-            self.w2[n + i] = self.d[i];
+        let (w2, dw2) = self.w2.split_at_mut(n);
+        for ((w2, &q), &d) in w2.iter_mut().zip(&self.q[..n]).zip(&self.d[..n]) {
+            *w2 = q + l * d;
         }
+        dw2[..n].copy_from_slice(&self.d[..n]);
         axpys(&mut self.zb2, false, &self.g, &self.rhs2, -T::one(), (kk, kk, 2, n));
         self.product(kk);
         self.z.iter_mut().for_each(|x| *x = T::zero());
