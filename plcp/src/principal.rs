@@ -322,7 +322,9 @@ fn axpys<T: Scalar>(
     if k == 0 {
         if !add {
             for c in 0..cols {
-                dst[c * n..c * n + rows].iter_mut().for_each(|x| *x = T::zero());
+                dst[c * n..c * n + rows]
+                    .iter_mut()
+                    .for_each(|x| *x = T::zero());
             }
         }
         return;
@@ -814,7 +816,14 @@ impl<T: Scalar> Kernel<'_, T> {
             self.u[a] = self.m(self.set[a], j);
             self.v[a] = self.m(j, self.set[a]);
         }
-        axpys(&mut self.gu, false, &self.g, &self.u, T::one(), (kk, kk, 1, n));
+        axpys(
+            &mut self.gu,
+            false,
+            &self.g,
+            &self.u,
+            T::one(),
+            (kk, kk, 1, n),
+        );
         let symmetric = self.block_symmetric && self.u[..kk] == self.v[..kk];
         if symmetric {
             // v = u and G = G' (to rounding): G' v = G u
@@ -1056,7 +1065,14 @@ impl<T: Scalar> Kernel<'_, T> {
     /// `w2 += M_{:,B} zb2` over the first `kk` columns of `M_{:,B}`.
     fn product(&mut self, kk: usize) {
         let n = self.n;
-        axpys(&mut self.w2, true, &self.mb, &self.zb2, T::one(), (n, kk, 2, n));
+        axpys(
+            &mut self.w2,
+            true,
+            &self.mb,
+            &self.zb2,
+            T::one(),
+            (n, kk, 2, n),
+        );
     }
 
     /// The values and slopes after an update ([`Self::advance`] and the
@@ -1086,7 +1102,14 @@ impl<T: Scalar> Kernel<'_, T> {
             *w2 = q + l * d;
         }
         dw2[..n].copy_from_slice(&self.d[..n]);
-        axpys(&mut self.zb2, false, &self.g, &self.rhs2, -T::one(), (kk, kk, 2, n));
+        axpys(
+            &mut self.zb2,
+            false,
+            &self.g,
+            &self.rhs2,
+            -T::one(),
+            (kk, kk, 2, n),
+        );
         self.product(kk);
         self.z.iter_mut().for_each(|x| *x = T::zero());
         self.dz.iter_mut().for_each(|x| *x = T::zero());
