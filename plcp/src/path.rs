@@ -227,6 +227,45 @@ impl<T: Scalar> Segment<T> {
         }
     }
 
+    /// [`Segment::eval`] into `pt` (its `z` and `w` reused where they have
+    /// the segment's length): the same operations, so the same bits,
+    /// without allocating (the end measure evaluates two points a path).
+    pub(crate) fn eval_into(&self, lambda: T, pt: &mut Point<T>) {
+        let dl = lambda - self.lambda_from;
+        let n = self.z_from.nrows();
+        if pt.z.nrows() != n {
+            pt.z = Col::zeros(n);
+        }
+        if pt.w.nrows() != self.w_from.nrows() {
+            pt.w = Col::zeros(self.w_from.nrows());
+        }
+        let (zf, dz) = (col_slice(&self.z_from), col_slice(&self.dz));
+        let (wf, dw) = (col_slice(&self.w_from), col_slice(&self.dw));
+        {
+            let (zs, ws) = (col_slice_mut(&mut pt.z), col_slice_mut(&mut pt.w));
+            for ((z, &f), &s) in zs.iter_mut().zip(zf).zip(dz) {
+                *z = f + s * dl;
+            }
+            for ((w, &f), &s) in ws.iter_mut().zip(wf).zip(dw) {
+                *w = f + s * dl;
+            }
+        }
+        if self.contains(lambda) {
+            let rule = self.clamp_rule(
+                lambda,
+                visible_max(pt.z.iter().copied()),
+                visible_max(pt.w.iter().copied()),
+            );
+            let (zs, ws) = (col_slice_mut(&mut pt.z), col_slice_mut(&mut pt.w));
+            for i in 0..zs.len() {
+                zs[i] = rule.z(zs[i], zf[i], dz[i]);
+                ws[i] = rule.w(ws[i], wf[i], dw[i]);
+            }
+        }
+        pt.lambda = lambda;
+        pt.u = affine(&self.u_from, &self.du, dl);
+    }
+
     /// The clamp of [`Segment::eval`] at `lambda` (inside the segment), given
     /// the unclamped vectors' [`visible_max`]: one rule shared with the
     /// allocation-free sign measure of [`crate::residual::segment_ends`].

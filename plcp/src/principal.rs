@@ -80,6 +80,8 @@ pub(crate) struct Kernel<'a, T: Scalar> {
     v: Vec<T>,
     gu: Vec<T>,
     vg: Vec<T>,
+    /// `|G_{:,b}|_1` of `G`'s columns, kept with `G` (the condition bound)
+    gsum: Vec<T>,
     /// `||M_{:,j}||_1` of every column, and their largest (`||M||_1`)
     col_norm1: Vec<T>,
     m_norm1: T,
@@ -93,6 +95,116 @@ pub(crate) struct Kernel<'a, T: Scalar> {
     pivots_since_inversion: usize,
     /// pivots since the values and slopes were last computed afresh
     since_fresh: usize,
+}
+
+/// A kernel's buffers kept on its thread after it is dropped, for the next
+/// kernel (`f64` only): a small solve paid about 18 allocations and the
+/// zeroing of `G` and `M_{:,B}` (`n^2` each) for every call. Holds at most
+/// one kernel's buffers a thread (`2 n^2 + 18 n` numbers, 2.6 MB at the
+/// order cap).
+struct Spare<T: Scalar> {
+    q: Vec<T>,
+    d: Vec<T>,
+    set: Vec<usize>,
+    pos: Vec<usize>,
+    vars: Vec<Var>,
+    g: Vec<T>,
+    mb: Vec<T>,
+    rhs2: Vec<T>,
+    zb2: Vec<T>,
+    w2: Vec<T>,
+    z: Vec<T>,
+    dz: Vec<T>,
+    w: Vec<T>,
+    dw: Vec<T>,
+    u: Vec<T>,
+    v: Vec<T>,
+    gu: Vec<T>,
+    vg: Vec<T>,
+    gsum: Vec<T>,
+    col_norm1: Vec<T>,
+}
+
+impl<T: Scalar> Default for Spare<T> {
+    fn default() -> Self {
+        let e = Vec::new;
+        Spare {
+            q: e(),
+            d: e(),
+            set: Vec::new(),
+            pos: Vec::new(),
+            vars: Vec::new(),
+            g: e(),
+            mb: e(),
+            rhs2: e(),
+            zb2: e(),
+            w2: e(),
+            z: e(),
+            dz: e(),
+            w: e(),
+            dw: e(),
+            u: e(),
+            v: e(),
+            gu: e(),
+            vg: e(),
+            gsum: e(),
+            col_norm1: e(),
+        }
+    }
+}
+
+std::thread_local! {
+    static SPARE: core::cell::RefCell<Spare<f64>> = core::cell::RefCell::new(Spare::default());
+}
+
+impl<T: Scalar> Spare<T> {
+    /// Swaps `self` with the thread's spare buffers (`f64` only; else, or
+    /// where the thread's are in use or gone, nothing).
+    fn swap_with_thread(&mut self) {
+        if let Some(mine) = (self as &mut dyn core::any::Any).downcast_mut::<Spare<f64>>() {
+            let _ = SPARE.try_with(|s| {
+                if let Ok(mut s) = s.try_borrow_mut() {
+                    core::mem::swap(&mut *s, mine);
+                }
+            });
+        }
+    }
+
+    fn take() -> Self {
+        let mut sp = Spare::default();
+        sp.swap_with_thread();
+        sp
+    }
+}
+
+impl<T: Scalar> Drop for Kernel<'_, T> {
+    fn drop(&mut self) {
+        use std::mem::take as t;
+        let mut sp = Spare {
+            q: t(&mut self.q),
+            d: t(&mut self.d),
+            set: t(&mut self.set),
+            pos: t(&mut self.pos),
+            vars: t(&mut self.vars),
+            g: t(&mut self.g),
+            mb: t(&mut self.mb),
+            rhs2: t(&mut self.rhs2),
+            zb2: t(&mut self.zb2),
+            w2: t(&mut self.w2),
+            z: t(&mut self.z),
+            dz: t(&mut self.dz),
+            w: t(&mut self.w),
+            dw: t(&mut self.dw),
+            u: t(&mut self.u),
+            v: t(&mut self.v),
+            gu: t(&mut self.gu),
+            vg: t(&mut self.vg),
+            gsum: t(&mut self.gsum),
+            col_norm1: t(&mut self.col_norm1),
+        };
+        // (the thread's previous spare buffers are freed with `sp`)
+        sp.swap_with_thread();
+    }
 }
 
 /// Why the kernel handed a problem back (for tests and the trace log).
@@ -197,35 +309,163 @@ fn view_mut<T: Scalar>(buf: &mut [T], k: usize, c: usize, n: usize) -> faer::Mat
     )
 }
 
-/// `dst (+)= alpha a b` on the calling thread.
-fn gemm<T: Scalar>(
-    dst: faer::MatMut<'_, T>,
+/// `dst[:rows, :cols] (+)= alpha a[:rows, :k] b[:k, :cols]` (all
+/// column-major, stride `n`) on the calling thread.
+fn axpys<T: Scalar>(
+    dst: &mut [T],
     add: bool,
-    a: MatRef<'_, T>,
-    b: MatRef<'_, T>,
+    a: &[T],
+    b: &[T],
     alpha: T,
+    (rows, k, cols, n): (usize, usize, usize, usize),
 ) {
+    if k == 0 {
+        if !add {
+            for c in 0..cols {
+                dst[c * n..c * n + rows]
+                    .iter_mut()
+                    .for_each(|x| *x = T::zero());
+            }
+        }
+        return;
+    }
     let accum = if add {
         faer::Accum::Add
     } else {
         faer::Accum::Replace
     };
-    faer::linalg::matmul::matmul(dst, accum, a, b, alpha, faer::Par::Seq);
+    faer::linalg::matmul::matmul(
+        view_mut(dst, rows, cols, n),
+        accum,
+        view(a, rows, k, n),
+        view(b, k, cols, n),
+        alpha,
+        faer::Par::Seq,
+    );
 }
 
-/// `G[:k, :k] += alpha x y'` (column-major, stride `n`).
-fn rank_one<T: Scalar>(g: &mut [T], n: usize, k: usize, x: &[T], y: &[T], alpha: T) {
-    gemm(
-        view_mut(g, k, k, n),
-        true,
-        view(x, k, 1, n),
-        view(y, k, 1, n).transpose(),
+/// `G[:k, :k] += x (alpha y)'` (column-major, stride `n`), and the
+/// absolute sums of the updated columns over their rows other than `skip`
+/// into `sums` (the condition bound's `|G|_1`, kept with `G`: no pass of
+/// its own). Pulp's dispatch as [`axpys`].
+#[allow(clippy::too_many_arguments)]
+fn rank_one<T: Scalar>(
+    g: &mut [T],
+    n: usize,
+    k: usize,
+    x: &[T],
+    y: &[T],
+    alpha: T,
+    skip: usize,
+    sums: &mut [T],
+) {
+    if k == 0 {
+        return;
+    }
+    pulp::Arch::new().dispatch(RankOne {
+        g,
+        n,
+        k,
+        x,
+        y,
         alpha,
-    );
+        skip,
+        sums,
+    });
+}
+
+struct RankOne<'a, T: Scalar> {
+    g: &'a mut [T],
+    n: usize,
+    k: usize,
+    x: &'a [T],
+    y: &'a [T],
+    alpha: T,
+    skip: usize,
+    sums: &'a mut [T],
+}
+
+impl<T: Scalar> pulp::WithSimd for RankOne<'_, T> {
+    type Output = ();
+
+    #[inline(always)]
+    fn with_simd<S: pulp::Simd>(self, _simd: S) {
+        let Self {
+            g,
+            n,
+            k,
+            x,
+            y,
+            alpha,
+            skip,
+            sums,
+        } = self;
+        let x = &x[..k];
+        for b in 0..k {
+            let c = alpha * y[b];
+            let col = &mut g[b * n..b * n + k];
+            for (gv, &xv) in col.iter_mut().zip(x) {
+                *gv += xv * c;
+            }
+            sums[b] = if skip < k {
+                abs_sum(&col[..skip]) + abs_sum(&col[skip + 1..])
+            } else {
+                abs_sum(col)
+            };
+        }
+    }
+}
+
+/// `vg[b] = G_{:,b}' v` for `G`'s first `k` columns (over their first `k`
+/// rows), each in four running sums; pulp's dispatch as [`axpys`].
+fn col_dots<T: Scalar>(g: &[T], n: usize, k: usize, v: &[T], vg: &mut [T]) {
+    struct Pass<'a, T: Scalar>(&'a [T], usize, usize, &'a [T], &'a mut [T]);
+    impl<T: Scalar> pulp::WithSimd for Pass<'_, T> {
+        type Output = ();
+        #[inline(always)]
+        fn with_simd<S: pulp::Simd>(self, _simd: S) {
+            let Pass(g, n, k, v, vg) = self;
+            let v = &v[..k];
+            for b in 0..k {
+                let col = &g[b * n..b * n + k];
+                let mut acc = [T::zero(); 4];
+                let (mut cc, mut vc) = (col.chunks_exact(4), v.chunks_exact(4));
+                for (c, w) in (&mut cc).zip(&mut vc) {
+                    for l in 0..4 {
+                        acc[l] += c[l] * w[l];
+                    }
+                }
+                let mut s = (acc[0] + acc[1]) + (acc[2] + acc[3]);
+                for (&c, &w) in cc.remainder().iter().zip(vc.remainder()) {
+                    s += c * w;
+                }
+                vg[b] = s;
+            }
+        }
+    }
+    pulp::Arch::new().dispatch(Pass(g, n, k, v, vg));
+}
+
+/// The absolute sums of `G`'s first `k` columns (over their first `k`
+/// rows) into `sums`, pulp's dispatch as [`axpys`].
+fn col_sums<T: Scalar>(g: &[T], n: usize, k: usize, sums: &mut [T]) {
+    struct Pass<'a, T: Scalar>(&'a [T], usize, usize, &'a mut [T]);
+    impl<T: Scalar> pulp::WithSimd for Pass<'_, T> {
+        type Output = ();
+        #[inline(always)]
+        fn with_simd<S: pulp::Simd>(self, _simd: S) {
+            let Pass(g, n, k, sums) = self;
+            for b in 0..k {
+                sums[b] = abs_sum(&g[b * n..b * n + k]);
+            }
+        }
+    }
+    pulp::Arch::new().dispatch(Pass(g, n, k, sums));
 }
 
 /// `sum_i abs(x_i)`, in four running sums (the order of a bound's terms
 /// does not matter; four lanes let the compiler vectorise).
+#[inline(always)]
 fn abs_sum<T: Scalar>(x: &[T]) -> T {
     let mut acc = [T::zero(); 4];
     let mut chunks = x.chunks_exact(4);
@@ -258,33 +498,78 @@ impl<'a, T: Scalar> Kernel<'a, T> {
         for j in 0..n {
             cols.push(m.col(j).try_as_col_major()?.as_slice());
         }
-        let col_norm1: Vec<T> = cols
-            .iter()
-            .map(|c| c.iter().fold(T::zero(), |a, &x| a + x.abs()))
-            .collect();
+        // the buffers of the last kernel dropped on this thread, if any
+        // (their contents are never read before they are written: `G` and
+        // `M_{:,B}` only over the current `B`)
+        let mut sp = Spare::<T>::take();
+        let mut col_norm1 = std::mem::take(&mut sp.col_norm1);
+        col_norm1.clear();
+        col_norm1.extend(
+            cols.iter()
+                .map(|c| c.iter().fold(T::zero(), |a, &x| a + x.abs())),
+        );
         let m_norm1 = col_norm1.iter().fold(T::zero(), |a, &x| a.max(x));
+        let sized = |v: &mut Vec<T>, len: usize| {
+            let mut v = std::mem::take(v);
+            v.clear();
+            v.resize(len, T::zero());
+            v
+        };
+        let (q, d) = (sized(&mut sp.q, n), sized(&mut sp.d, n));
+        let (rhs2, zb2, w2) = (
+            sized(&mut sp.rhs2, 2 * n),
+            sized(&mut sp.zb2, 2 * n),
+            sized(&mut sp.w2, 2 * n),
+        );
+        let (z, dz, w, dw) = (
+            sized(&mut sp.z, n),
+            sized(&mut sp.dz, n),
+            sized(&mut sp.w, n),
+            sized(&mut sp.dw, n),
+        );
+        let (u, v, gu, vg, gsum) = (
+            sized(&mut sp.u, n),
+            sized(&mut sp.v, n),
+            sized(&mut sp.gu, n),
+            sized(&mut sp.vg, n),
+            sized(&mut sp.gsum, n),
+        );
+        let (mut g, mut mb) = (std::mem::take(&mut sp.g), std::mem::take(&mut sp.mb));
+        if g.len() != n * n || mb.len() != n * n {
+            g.clear();
+            mb.clear();
+        }
+        let mut set = std::mem::take(&mut sp.set);
+        set.clear();
+        let mut pos = std::mem::take(&mut sp.pos);
+        pos.clear();
+        pos.resize(n, usize::MAX);
+        let mut vars = std::mem::take(&mut sp.vars);
+        vars.clear();
+        vars.extend((0..n).map(Var::W));
         Some(Kernel {
             n,
             cols,
-            q: vec![T::zero(); n],
-            d: vec![T::zero(); n],
-            set: Vec::with_capacity(n),
-            pos: vec![usize::MAX; n],
-            vars: (0..n).map(Var::W).collect(),
-            g: Vec::new(),
-            mb: Vec::new(),
-            rhs2: vec![T::zero(); 2 * n],
-            zb2: vec![T::zero(); 2 * n],
-            w2: vec![T::zero(); 2 * n],
-            z: vec![T::zero(); n],
-            dz: vec![T::zero(); n],
-            w: vec![T::zero(); n],
-            dw: vec![T::zero(); n],
+            q,
+            d,
+            set,
+            pos,
+            vars,
+            g,
+            mb,
+            rhs2,
+            zb2,
+            w2,
+            z,
+            dz,
+            w,
+            dw,
             lambda: T::zero(),
-            u: vec![T::zero(); n],
-            v: vec![T::zero(); n],
-            gu: vec![T::zero(); n],
-            vg: vec![T::zero(); n],
+            u,
+            v,
+            gu,
+            vg,
+            gsum,
             col_norm1,
             m_norm1,
             block_symmetric: true,
@@ -307,9 +592,9 @@ impl<'a, T: Scalar> Kernel<'a, T> {
             self.vars[i] = Var::W(i);
         }
         self.set.clear();
-        if !set.is_empty() && self.g.is_empty() {
-            self.g = vec![T::zero(); n * n];
-            self.mb = vec![T::zero(); n * n];
+        if !set.is_empty() && self.g.len() < n * n {
+            self.g.resize(n * n, T::zero());
+            self.mb.resize(n * n, T::zero());
         }
         for (a, &i) in set.iter().enumerate() {
             if self.pos[i] != usize::MAX {
@@ -351,9 +636,11 @@ impl<'a, T: Scalar> Kernel<'a, T> {
         if q.nrows() != n || d.nrows() != n {
             return Err(Decline::NotEligible);
         }
-        for i in 0..n {
-            self.q[i] = q[i];
-            self.d[i] = d[i];
+        for (dst, &x) in self.q[..n].iter_mut().zip(q.iter()) {
+            *dst = x;
+        }
+        for (dst, &x) in self.d[..n].iter_mut().zip(d.iter()) {
+            *dst = x;
         }
         self.lambda = lambda0;
         // a basic value below zero here is a start that is not feasible
@@ -363,14 +650,14 @@ impl<'a, T: Scalar> Kernel<'a, T> {
         })?;
         let tie = T::from_f64(PRINCIPAL_TIE_EPS) * T::eps();
         let zmax = self.z.iter().fold(T::one(), |a, &x| a.max(x.abs()));
+        let (pos, z, w) = (&self.pos[..n], &self.z[..n], &self.w[..n]);
+        let (qs, ds) = (&self.q[..n], &self.d[..n]);
         for i in 0..n {
-            let ok = if self.pos[i] != usize::MAX {
-                clearly_above(self.z[i], tie * zmax)
+            let ok = if pos[i] != usize::MAX {
+                clearly_above(z[i], tie * zmax)
             } else {
-                let s = T::one()
-                    .max(self.q[i].abs())
-                    .max((lambda0 * self.d[i]).abs());
-                clearly_above(self.w[i], tie * s)
+                let s = T::one().max(qs[i].abs()).max((lambda0 * ds[i]).abs());
+                clearly_above(w[i], tie * s)
             };
             if !ok {
                 return Err(Decline::StartNotInterior);
@@ -396,11 +683,14 @@ impl<'a, T: Scalar> Kernel<'a, T> {
             // ratio test: the smallest step of L to a zero of a basic variable
             let (mut best, mut second, mut arg) = (T::max_value(), T::max_value(), usize::MAX);
             let (mut rate_max, mut rate_arg) = (T::zero(), T::zero());
+            // (over slices of length n: no bounds checks in the loop)
+            let (pos, z, dz) = (&self.pos[..n], &self.z[..n], &self.dz[..n]);
+            let (w, dw) = (&self.w[..n], &self.dw[..n]);
             for i in 0..n {
-                let (x, dx) = if self.pos[i] != usize::MAX {
-                    (self.z[i], self.dz[i])
+                let (x, dx) = if pos[i] != usize::MAX {
+                    (z[i], dz[i])
                 } else {
-                    (self.w[i], self.dw[i])
+                    (w[i], dw[i])
                 };
                 rate_max = rate_max.max(dx.abs());
                 if dx < T::zero() {
@@ -517,35 +807,29 @@ impl<T: Scalar> Kernel<'_, T> {
     /// Adds `j` to `B`: `G` bordered by `s = M_jj - v G u`.
     fn add(&mut self, j: usize) -> Result<(), Decline> {
         let (n, kk) = (self.n, self.set.len());
-        if self.g.is_empty() {
-            self.g = vec![T::zero(); n * n];
-            self.mb = vec![T::zero(); n * n];
+        if self.g.len() < n * n {
+            self.g.resize(n * n, T::zero());
+            self.mb.resize(n * n, T::zero());
         }
         // u = M_Bj, v = M_jB; gu = G u, vg = G' v
         for a in 0..kk {
             self.u[a] = self.m(self.set[a], j);
             self.v[a] = self.m(j, self.set[a]);
         }
-        let g = view(&self.g, kk, kk, n);
-        gemm(
-            view_mut(&mut self.gu, kk, 1, n),
+        axpys(
+            &mut self.gu,
             false,
-            g,
-            view(&self.u, kk, 1, n),
+            &self.g,
+            &self.u,
             T::one(),
+            (kk, kk, 1, n),
         );
         let symmetric = self.block_symmetric && self.u[..kk] == self.v[..kk];
         if symmetric {
             // v = u and G = G' (to rounding): G' v = G u
             self.vg[..kk].copy_from_slice(&self.gu[..kk]);
         } else {
-            gemm(
-                view_mut(&mut self.vg, kk, 1, n),
-                false,
-                g.transpose(),
-                view(&self.v, kk, 1, n),
-                T::one(),
-            );
+            col_dots(&self.g, n, kk, &self.v, &mut self.vg);
         }
         let mjj = self.m(j, j);
         let (mut vgu, mut mag) = (T::zero(), mjj.abs());
@@ -561,12 +845,24 @@ impl<T: Scalar> Kernel<'_, T> {
         let inv = T::one() / s;
         self.block_symmetric = symmetric;
         // G + gu vg' / s, bordered by -gu / s, -vg' / s and 1 / s
-        rank_one(&mut self.g, n, kk, &self.gu[..kk], &self.vg[..kk], inv);
+        rank_one(
+            &mut self.g,
+            n,
+            kk,
+            &self.gu,
+            &self.vg,
+            inv,
+            usize::MAX,
+            &mut self.gsum,
+        );
         for b in 0..kk {
-            self.g[b * n + kk] = -(self.vg[b] * inv);
+            let gb = -(self.vg[b] * inv);
+            self.g[b * n + kk] = gb;
+            self.gsum[b] += gb.abs();
             self.g[kk * n + b] = -(self.gu[b] * inv);
         }
         self.g[kk * n + kk] = inv;
+        self.gsum[kk] = abs_sum(&self.g[kk * n..kk * n + kk + 1]);
         self.mb[kk * n..kk * n + n].copy_from_slice(&self.cols[j][..n]);
         self.pos[j] = kk;
         self.vars[j] = Var::Z(j);
@@ -595,9 +891,11 @@ impl<T: Scalar> Kernel<'_, T> {
             &mut self.g,
             n,
             kk,
-            &self.u[..kk],
-            &self.v[..kk],
+            &self.u,
+            &self.v,
             -(T::one() / gpp),
+            p,
+            &mut self.gsum,
         );
         // the last index takes position p
         let last = kk - 1;
@@ -608,6 +906,7 @@ impl<T: Scalar> Kernel<'_, T> {
             for b in 0..kk {
                 self.g[b * n + p] = self.g[b * n + last];
             }
+            self.gsum[p] = self.gsum[last];
             self.mb.copy_within(last * n..last * n + n, p * n);
             let moved = self.set[last];
             self.set[p] = moved;
@@ -647,6 +946,7 @@ impl<T: Scalar> Kernel<'_, T> {
                 self.g[b * n + a] = inv[(a, b)];
             }
         }
+        col_sums(&self.g, n, kk, &mut self.gsum);
         Ok(())
     }
 
@@ -683,11 +983,12 @@ impl<T: Scalar> Kernel<'_, T> {
         let cond = match self.cond_now {
             Some(c) => c,
             None => {
-                let (n, kk) = (self.n, self.set.len());
+                // (|G|_1 from the column sums kept with G)
+                let kk = self.set.len();
                 let mut g1 = T::zero();
                 let mut mb1 = T::zero();
                 for b in 0..kk {
-                    g1 = g1.max(abs_sum(&self.g[b * n..b * n + kk]));
+                    g1 = g1.max(self.gsum[b]);
                     mb1 = mb1.max(self.col_norm1[self.set[b]]);
                 }
                 let c = T::one().max(mb1).to_f64()
@@ -716,10 +1017,11 @@ impl<T: Scalar> Kernel<'_, T> {
             self.z[i] += self.dz[i] * t;
         }
         // [w | dw] = [q + L d | dw] + M_{:,B} [z_B | delta]
-        for i in 0..n {
-            self.w2[i] = self.q[i] + at * self.d[i];
-            self.w2[n + i] = self.dw[i];
+        let (w2, dw2) = self.w2.split_at_mut(n);
+        for ((w2, &q), &d) in w2.iter_mut().zip(&self.q[..n]).zip(&self.d[..n]) {
+            *w2 = q + at * d;
         }
+        dw2[..n].copy_from_slice(&self.dw[..n]);
     }
 
     /// The update of a removal of `j` (before `G` is contracted): the slopes
@@ -763,15 +1065,14 @@ impl<T: Scalar> Kernel<'_, T> {
     /// `w2 += M_{:,B} zb2` over the first `kk` columns of `M_{:,B}`.
     fn product(&mut self, kk: usize) {
         let n = self.n;
-        if kk > 0 {
-            gemm(
-                view_mut(&mut self.w2, n, 2, n),
-                true,
-                view(&self.mb, n, kk, n),
-                view(&self.zb2, kk, 2, n),
-                T::one(),
-            );
-        }
+        axpys(
+            &mut self.w2,
+            true,
+            &self.mb,
+            &self.zb2,
+            T::one(),
+            (n, kk, 2, n),
+        );
     }
 
     /// The values and slopes after an update ([`Self::advance`] and the
@@ -796,19 +1097,19 @@ impl<T: Scalar> Kernel<'_, T> {
             self.rhs2[n + a] = self.d[i];
         }
         // [w | dw] = [q + L d | d] + M_{:,B} [z_B | dz_B]
-        for i in 0..n {
-            self.w2[i] = self.q[i] + l * self.d[i];
-            self.w2[n + i] = self.d[i];
+        let (w2, dw2) = self.w2.split_at_mut(n);
+        for ((w2, &q), &d) in w2.iter_mut().zip(&self.q[..n]).zip(&self.d[..n]) {
+            *w2 = q + l * d;
         }
-        if kk > 0 {
-            gemm(
-                view_mut(&mut self.zb2, kk, 2, n),
-                false,
-                view(&self.g, kk, kk, n),
-                view(&self.rhs2, kk, 2, n),
-                -T::one(),
-            );
-        }
+        dw2[..n].copy_from_slice(&self.d[..n]);
+        axpys(
+            &mut self.zb2,
+            false,
+            &self.g,
+            &self.rhs2,
+            -T::one(),
+            (kk, kk, 2, n),
+        );
         self.product(kk);
         self.z.iter_mut().for_each(|x| *x = T::zero());
         self.dz.iter_mut().for_each(|x| *x = T::zero());

@@ -679,12 +679,36 @@ pub fn measure_ends<T: Scalar>(problem: &Plcp<T>, path: &mut Path<T>) {
         }
         _ => residual(problem, point),
     };
+    // (one point's buffers for both evaluations; the end point is not
+    // measured again where it is the last segment's end to the bit, as on
+    // the fast path)
+    let mut pt = Point {
+        lambda: T::zero(),
+        z: faer::Col::zeros(0),
+        w: faer::Col::zeros(0),
+        u: faer::Col::zeros(0),
+    };
+    // (bitwise, in `f64`: exact for the native types; others always measured)
+    let bits = |x: T| x.to_f64().to_bits();
+    let same = |a: &faer::Col<T>, b: &faer::Col<T>| {
+        T::NATIVE
+            && a.nrows() == b.nrows()
+            && a.iter().zip(b.iter()).all(|(&x, &y)| bits(x) == bits(y))
+    };
+    let mut end_measured = false;
     if let Some(s) = path.segments.first() {
-        worst = worst.max(measure(&s.eval(s.lambda_from)));
+        s.eval_into(s.lambda_from, &mut pt);
+        worst = worst.max(measure(&pt));
     }
     if let Some(s) = path.segments.last() {
         if !s.unbounded && s.lambda_to.is_finite() {
-            worst = worst.max(measure(&s.eval(s.lambda_to)));
+            s.eval_into(s.lambda_to, &mut pt);
+            worst = worst.max(measure(&pt));
+            let e = &path.end;
+            end_measured = bits(e.lambda) == bits(pt.lambda)
+                && same(&e.z, &pt.z)
+                && same(&e.w, &pt.w)
+                && same(&e.u, &pt.u);
         }
     }
     if !path.segments.is_empty() {
@@ -693,7 +717,7 @@ pub fn measure_ends<T: Scalar>(problem: &Plcp<T>, path: &mut Path<T>) {
             worst = worst.max(segment_ends(&units, seg));
         }
     }
-    if path.end.lambda.is_finite() {
+    if path.end.lambda.is_finite() && !end_measured {
         worst = worst.max(measure(&path.end));
     }
     path.info.residual = worst;
