@@ -100,8 +100,10 @@ pub(crate) struct Kernel<'a, T: Scalar> {
 /// A kernel's buffers kept on its thread after it is dropped, for the next
 /// kernel (`f64` only): a small solve paid about 18 allocations and the
 /// zeroing of `G` and `M_{:,B}` (`n^2` each) for every call. Holds at most
-/// one kernel's buffers a thread (`2 n^2 + 18 n` numbers, 2.6 MB at the
-/// order cap).
+/// one kernel's buffers a thread, and only of a kernel of order at most
+/// [`SPARE_MAX_N`] (`2 n^2 + 18 n` numbers, 0.3 MB there): above it the
+/// allocations are a small part of a solve and the memory would stay with
+/// the thread.
 struct Spare<T: Scalar> {
     q: Vec<T>,
     d: Vec<T>,
@@ -177,9 +179,15 @@ impl<T: Scalar> Spare<T> {
     }
 }
 
+/// The largest order whose buffers a thread keeps ([`Spare`]).
+const SPARE_MAX_N: usize = 128;
+
 impl<T: Scalar> Drop for Kernel<'_, T> {
     fn drop(&mut self) {
         use std::mem::take as t;
+        if self.n > SPARE_MAX_N {
+            return;
+        }
         let mut sp = Spare {
             q: t(&mut self.q),
             d: t(&mut self.d),
