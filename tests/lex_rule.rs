@@ -7,7 +7,7 @@
 //! cantilevers (sections tied at every hinge event) and on random
 //! degenerate sparse problems; each case must meet ties.
 
-mod common;
+use crate::common;
 
 use faer::{Col, Mat};
 use frames::{Scene, System};

@@ -4,7 +4,7 @@
 //! to 60 elements; and the sparse route ends on its unbounded ray with small
 //! residuals, re-measured on the whole path.
 
-mod common;
+use crate::common;
 
 use frames::{Scene, System};
 use plcp::{BasisKind, Method, Path};

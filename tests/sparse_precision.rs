@@ -6,7 +6,7 @@
 //! the same accelerations.
 //!
 //! `cantilever_report` (ignored) prints the figures for any size:
-//! `PLCP_CANTILEVER=1000 cargo test --release --test sparse_precision -- --ignored --nocapture`
+//! `PLCP_CANTILEVER=1000 cargo test --release --test suite sparse_precision:: -- --ignored --nocapture`
 //! (`PLCP_CANTILEVER_F64_ONLY=1`: the f64 path alone, for profiling).
 
 use frames::{Scene, System};
@@ -120,7 +120,7 @@ fn report(n: usize) -> (Path<f64>, f64, f64) {
 }
 
 #[test]
-#[ignore = "a report: PLCP_CANTILEVER=1000 cargo test --release --test sparse_precision -- --ignored --nocapture"]
+#[ignore = "a report: PLCP_CANTILEVER=1000 cargo test --release --test suite sparse_precision:: -- --ignored --nocapture"]
 fn cantilever_report() {
     let sizes: Vec<usize> = std::env::var("PLCP_CANTILEVER")
         .ok()

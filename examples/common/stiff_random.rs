@@ -5,7 +5,7 @@
 // index loops read like the formulas they build
 #![allow(clippy::needless_range_loop)]
 
-use crate::stiff_core::{Case, Problem};
+use super::stiff_core::{Case, Problem};
 use plcp::Method;
 use rand::Rng;
 use rand_chacha::ChaCha8Rng;

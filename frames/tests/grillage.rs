@@ -6,9 +6,7 @@
 //! cantilever reproduced out of plane, and the reduced against the full
 //! assembly.
 
-mod common {
-    pub mod reference;
-}
+use crate::common;
 use common::reference::{lp_collapse_load, qp_accelerations};
 use frames::assemble::MemberForce;
 use frames::model::{Component, Model};

@@ -8,9 +8,7 @@ use frames::model::Model;
 use frames::timestep::{compare, plcp_valid_until};
 use frames::Analysis;
 
-mod common {
-    pub mod timestep;
-}
+use crate::common;
 use common::timestep::run;
 
 fn analysis(name: &str) -> Analysis {

@@ -4,10 +4,7 @@
 //! in the plane `z = 0`), and the same to rounding after a rigid rotation of
 //! the whole scene in space.
 
-mod common {
-    pub mod reference;
-    pub mod timestep;
-}
+use crate::common;
 use frames::{Analysis, AnalysisOptions, Scene};
 use toml::Value;
 

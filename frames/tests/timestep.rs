@@ -9,9 +9,7 @@ use frames::timestep::{
 };
 use frames::{Analysis, History};
 
-mod common {
-    pub mod timestep;
-}
+use crate::common;
 use common::timestep::{analysis, run};
 
 const NO_DEACTIVATION: [&str; 6] = [

@@ -7,7 +7,7 @@
 //! float paths tampered with (a shifted breakpoint, a wrong basis), which both
 //! reject.
 
-mod common;
+use crate::common;
 
 use common::monotone;
 use faer::{Col, Mat};

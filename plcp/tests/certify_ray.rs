@@ -428,7 +428,7 @@ fn dense_padded(big: usize) -> Plcp<f64> {
 /// secondary ray at `L = 1` at orders 62, 122 and 202 (14, 49 and 97
 /// segments). Ignored for its time (about 25 s, the continuation's
 /// big-integer tableau at order 202); reprint with
-/// `cargo test --release -p plcp --test certify_ray -- --ignored --nocapture`.
+/// `cargo test --release -p plcp --test suite certify_ray:: -- --ignored --nocapture`.
 #[test]
 #[ignore]
 fn dense_secondary_rays_direct_and_continued_agree() {

@@ -2,7 +2,7 @@
 //! tampered ones, agreement of the exact tracer with the float path, and the
 //! property that a success status never comes with a rejected certificate.
 
-mod common;
+use crate::common;
 
 use common::{col_t, mat_t, monotone};
 use faer::{col, mat, Mat};

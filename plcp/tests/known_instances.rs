@@ -28,7 +28,7 @@
 //! Tolerances (absolute on these O(1)..O(256) integer-data problems, relative
 //! where stated): f64 1e-10, f32 1e-3, fx128 1e-26.
 
-mod common;
+use crate::common;
 
 use common::*;
 use faer::{Col, Mat};

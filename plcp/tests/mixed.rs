@@ -52,7 +52,7 @@
 //! The residual, forward and agreement tolerances above hold for free blocks with
 //! condition number up to 100 and grow in proportion beyond (see `for_conditioning`).
 
-mod common;
+use crate::common;
 
 use clarabel::algebra::CscMatrix;
 use clarabel::solver::{DefaultSettings, DefaultSolver, IPSolver, SolverStatus, SupportedConeT};

@@ -9,8 +9,7 @@ use plcp::io::sparse_json::parse_sparse;
 use plcp::Settings;
 use std::path::PathBuf;
 
-#[path = "common/cli.rs"]
-mod cli;
+use crate::common::cli;
 
 fn dir(name: &str) -> PathBuf {
     let d = PathBuf::from(env!("CARGO_TARGET_TMPDIR"))

@@ -37,7 +37,7 @@
 //! variable may end a step that much below zero (relative). In f64 and fx128 the
 //! tie tolerance is far below the residual tolerance.
 
-mod common;
+use crate::common;
 
 use common::*;
 use faer::Col;

@@ -13,7 +13,7 @@
 //! * `infeasible` is claimed as proven only with a checked certificate.
 //! * Data the working type cannot hold (underflow) are an error naming the entry.
 
-mod common;
+use crate::common;
 
 use common::{diag_dominant, monotone};
 use faer::{fx128, Col, Mat};

@@ -7,8 +7,7 @@ use plcp::io::sparse_json::parse_sparse;
 use plcp::{Plcp, Settings, Var};
 use std::path::PathBuf;
 
-#[path = "common/cli.rs"]
-mod cli;
+use crate::common::cli;
 
 /// The 5-point Laplacian on an `nx x nx` grid, a bowl obstacle `psi < 0`:
 /// `(triplets, q, d)` of `w = A psi + L h^2 1 + A z`.

@@ -1,7 +1,6 @@
 //! Runs the `plcp` binary: the command-line half of the input-format tests
-//! (`mtx_input`, `sparse_input`), which include it with
-//! `#[path = "common/cli.rs"] mod cli;` (the other tests share `common`
-//! without the binary).
+//! (`mtx_input`, `sparse_input`). Compiled only with the `cli` feature, which
+//! builds the binary.
 #![allow(dead_code)]
 
 use std::path::Path;

@@ -18,6 +18,10 @@
 //! * [`check_path`]: every structural and numerical property a path must have.
 #![allow(dead_code)]
 
+/// Runs the `plcp` binary (the tests that need the command line).
+#[cfg(feature = "cli")]
+pub mod cli;
+
 use faer::linalg::solvers::Solve;
 use faer::{Col, ColRef, Mat, MatRef};
 use plcp::residual::residual;
