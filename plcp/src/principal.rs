@@ -51,6 +51,32 @@ use faer::{Col, MatRef};
 pub(crate) struct Kernel<'a, T: Scalar> {
     n: usize,
     cols: Vec<&'a [T]>,
+    /// the vectors and matrices, sized by `n` (kept on the thread after the
+    /// kernel for the next one: [`Buffers::swap_with_thread`])
+    buf: Buffers<T>,
+    lambda: T,
+    /// the largest of `||M_{:,j}||_1` (`||M||_1`)
+    m_norm1: T,
+    /// `M_BB` symmetric (exactly): then so is `G` (to rounding), and an
+    /// addition with `M_jB = M_Bj'` takes `G' v = G u` (one product)
+    block_symmetric: bool,
+    max_cond: f64,
+    /// the condition bound of the current basis, `None` after a pivot
+    cond_now: Option<f64>,
+    inversions: usize,
+    pivots_since_inversion: usize,
+    /// pivots since the values and slopes were last computed afresh
+    since_fresh: usize,
+}
+
+/// A kernel's vectors and matrices. They outlive it on its thread, for the
+/// next kernel (`f64` only): a small solve paid about 18 allocations and the
+/// zeroing of `G` and `M_{:,B}` (`n^2` each) for every call. A thread keeps at
+/// most one kernel's buffers, and only of a kernel of order at most
+/// [`SPARE_MAX_N`] (`2 n^2 + 18 n` numbers, 0.3 MB there): above it the
+/// allocations are a small part of a solve and the memory would stay with
+/// the thread.
+struct Buffers<T: Scalar> {
     q: Vec<T>,
     d: Vec<T>,
     /// `B` in the order of `G`'s rows and columns.
@@ -74,7 +100,6 @@ pub(crate) struct Kernel<'a, T: Scalar> {
     dz: Vec<T>,
     w: Vec<T>,
     dw: Vec<T>,
-    lambda: T,
     // work vectors of length n
     u: Vec<T>,
     v: Vec<T>,
@@ -82,55 +107,14 @@ pub(crate) struct Kernel<'a, T: Scalar> {
     vg: Vec<T>,
     /// `|G_{:,b}|_1` of `G`'s columns, kept with `G` (the condition bound)
     gsum: Vec<T>,
-    /// `||M_{:,j}||_1` of every column, and their largest (`||M||_1`)
-    col_norm1: Vec<T>,
-    m_norm1: T,
-    /// `M_BB` symmetric (exactly): then so is `G` (to rounding), and an
-    /// addition with `M_jB = M_Bj'` takes `G' v = G u` (one product)
-    block_symmetric: bool,
-    max_cond: f64,
-    /// the condition bound of the current basis, `None` after a pivot
-    cond_now: Option<f64>,
-    inversions: usize,
-    pivots_since_inversion: usize,
-    /// pivots since the values and slopes were last computed afresh
-    since_fresh: usize,
-}
-
-/// A kernel's buffers kept on its thread after it is dropped, for the next
-/// kernel (`f64` only): a small solve paid about 18 allocations and the
-/// zeroing of `G` and `M_{:,B}` (`n^2` each) for every call. Holds at most
-/// one kernel's buffers a thread, and only of a kernel of order at most
-/// [`SPARE_MAX_N`] (`2 n^2 + 18 n` numbers, 0.3 MB there): above it the
-/// allocations are a small part of a solve and the memory would stay with
-/// the thread.
-struct Spare<T: Scalar> {
-    q: Vec<T>,
-    d: Vec<T>,
-    set: Vec<usize>,
-    pos: Vec<usize>,
-    vars: Vec<Var>,
-    g: Vec<T>,
-    mb: Vec<T>,
-    rhs2: Vec<T>,
-    zb2: Vec<T>,
-    w2: Vec<T>,
-    z: Vec<T>,
-    dz: Vec<T>,
-    w: Vec<T>,
-    dw: Vec<T>,
-    u: Vec<T>,
-    v: Vec<T>,
-    gu: Vec<T>,
-    vg: Vec<T>,
-    gsum: Vec<T>,
+    /// `||M_{:,j}||_1` of every column
     col_norm1: Vec<T>,
 }
 
-impl<T: Scalar> Default for Spare<T> {
-    fn default() -> Self {
+impl<T: Scalar> Buffers<T> {
+    fn empty() -> Self {
         let e = Vec::new;
-        Spare {
+        Buffers {
             q: e(),
             d: e(),
             set: Vec::new(),
@@ -153,17 +137,47 @@ impl<T: Scalar> Default for Spare<T> {
             col_norm1: e(),
         }
     }
-}
 
-std::thread_local! {
-    static SPARE: core::cell::RefCell<Spare<f64>> = core::cell::RefCell::new(Spare::default());
-}
+    /// Sized and set for a kernel of order `n` with every `w` basic. The old
+    /// contents are never read before they are written: `G` and `M_{:,B}`
+    /// (kept if already `n x n`) only over the current `B`.
+    fn reset(&mut self, n: usize) {
+        for v in [
+            &mut self.q,
+            &mut self.d,
+            &mut self.z,
+            &mut self.dz,
+            &mut self.w,
+            &mut self.dw,
+            &mut self.u,
+            &mut self.v,
+            &mut self.gu,
+            &mut self.vg,
+            &mut self.gsum,
+        ] {
+            v.clear();
+            v.resize(n, T::zero());
+        }
+        for v in [&mut self.rhs2, &mut self.zb2, &mut self.w2] {
+            v.clear();
+            v.resize(2 * n, T::zero());
+        }
+        if self.g.len() != n * n || self.mb.len() != n * n {
+            self.g.clear();
+            self.mb.clear();
+        }
+        self.set.clear();
+        self.pos.clear();
+        self.pos.resize(n, usize::MAX);
+        self.vars.clear();
+        self.vars.extend((0..n).map(Var::W));
+        self.col_norm1.clear();
+    }
 
-impl<T: Scalar> Spare<T> {
     /// Swaps `self` with the thread's spare buffers (`f64` only; else, or
     /// where the thread's are in use or gone, nothing).
     fn swap_with_thread(&mut self) {
-        if let Some(mine) = (self as &mut dyn core::any::Any).downcast_mut::<Spare<f64>>() {
+        if let Some(mine) = (self as &mut dyn core::any::Any).downcast_mut::<Buffers<f64>>() {
             let _ = SPARE.try_with(|s| {
                 if let Ok(mut s) = s.try_borrow_mut() {
                     core::mem::swap(&mut *s, mine);
@@ -171,47 +185,21 @@ impl<T: Scalar> Spare<T> {
             });
         }
     }
-
-    fn take() -> Self {
-        let mut sp = Spare::default();
-        sp.swap_with_thread();
-        sp
-    }
 }
 
-/// The largest order whose buffers a thread keeps ([`Spare`]).
+std::thread_local! {
+    static SPARE: core::cell::RefCell<Buffers<f64>> = core::cell::RefCell::new(Buffers::empty());
+}
+
+/// The largest order whose buffers a thread keeps ([`Buffers`]).
 const SPARE_MAX_N: usize = 128;
 
 impl<T: Scalar> Drop for Kernel<'_, T> {
     fn drop(&mut self) {
-        use std::mem::take as t;
-        if self.n > SPARE_MAX_N {
-            return;
+        if self.n <= SPARE_MAX_N {
+            // (the thread's previous buffers are freed with `self.buf`)
+            self.buf.swap_with_thread();
         }
-        let mut sp = Spare {
-            q: t(&mut self.q),
-            d: t(&mut self.d),
-            set: t(&mut self.set),
-            pos: t(&mut self.pos),
-            vars: t(&mut self.vars),
-            g: t(&mut self.g),
-            mb: t(&mut self.mb),
-            rhs2: t(&mut self.rhs2),
-            zb2: t(&mut self.zb2),
-            w2: t(&mut self.w2),
-            z: t(&mut self.z),
-            dz: t(&mut self.dz),
-            w: t(&mut self.w),
-            dw: t(&mut self.dw),
-            u: t(&mut self.u),
-            v: t(&mut self.v),
-            gu: t(&mut self.gu),
-            vg: t(&mut self.vg),
-            gsum: t(&mut self.gsum),
-            col_norm1: t(&mut self.col_norm1),
-        };
-        // (the thread's previous spare buffers are freed with `sp`)
-        sp.swap_with_thread();
     }
 }
 
@@ -507,78 +495,19 @@ impl<'a, T: Scalar> Kernel<'a, T> {
             cols.push(m.col(j).try_as_col_major()?.as_slice());
         }
         // the buffers of the last kernel dropped on this thread, if any
-        // (their contents are never read before they are written: `G` and
-        // `M_{:,B}` only over the current `B`)
-        let mut sp = Spare::<T>::take();
-        let mut col_norm1 = std::mem::take(&mut sp.col_norm1);
-        col_norm1.clear();
-        col_norm1.extend(
+        let mut buf = Buffers::empty();
+        buf.swap_with_thread();
+        buf.reset(n);
+        buf.col_norm1.extend(
             cols.iter()
                 .map(|c| c.iter().fold(T::zero(), |a, &x| a + x.abs())),
         );
-        let m_norm1 = col_norm1.iter().fold(T::zero(), |a, &x| a.max(x));
-        let sized = |v: &mut Vec<T>, len: usize| {
-            let mut v = std::mem::take(v);
-            v.clear();
-            v.resize(len, T::zero());
-            v
-        };
-        let (q, d) = (sized(&mut sp.q, n), sized(&mut sp.d, n));
-        let (rhs2, zb2, w2) = (
-            sized(&mut sp.rhs2, 2 * n),
-            sized(&mut sp.zb2, 2 * n),
-            sized(&mut sp.w2, 2 * n),
-        );
-        let (z, dz, w, dw) = (
-            sized(&mut sp.z, n),
-            sized(&mut sp.dz, n),
-            sized(&mut sp.w, n),
-            sized(&mut sp.dw, n),
-        );
-        let (u, v, gu, vg, gsum) = (
-            sized(&mut sp.u, n),
-            sized(&mut sp.v, n),
-            sized(&mut sp.gu, n),
-            sized(&mut sp.vg, n),
-            sized(&mut sp.gsum, n),
-        );
-        let (mut g, mut mb) = (std::mem::take(&mut sp.g), std::mem::take(&mut sp.mb));
-        if g.len() != n * n || mb.len() != n * n {
-            g.clear();
-            mb.clear();
-        }
-        let mut set = std::mem::take(&mut sp.set);
-        set.clear();
-        let mut pos = std::mem::take(&mut sp.pos);
-        pos.clear();
-        pos.resize(n, usize::MAX);
-        let mut vars = std::mem::take(&mut sp.vars);
-        vars.clear();
-        vars.extend((0..n).map(Var::W));
+        let m_norm1 = buf.col_norm1.iter().fold(T::zero(), |a, &x| a.max(x));
         Some(Kernel {
             n,
             cols,
-            q,
-            d,
-            set,
-            pos,
-            vars,
-            g,
-            mb,
-            rhs2,
-            zb2,
-            w2,
-            z,
-            dz,
-            w,
-            dw,
+            buf,
             lambda: T::zero(),
-            u,
-            v,
-            gu,
-            vg,
-            gsum,
-            col_norm1,
             m_norm1,
             block_symmetric: true,
             max_cond: 1.0,
@@ -595,23 +524,23 @@ impl<'a, T: Scalar> Kernel<'a, T> {
         if set.iter().any(|&i| i >= n) {
             return Err(Decline::NotEligible);
         }
-        for &i in &self.set {
-            self.pos[i] = usize::MAX;
-            self.vars[i] = Var::W(i);
+        for &i in &self.buf.set {
+            self.buf.pos[i] = usize::MAX;
+            self.buf.vars[i] = Var::W(i);
         }
-        self.set.clear();
-        if !set.is_empty() && self.g.len() < n * n {
-            self.g.resize(n * n, T::zero());
-            self.mb.resize(n * n, T::zero());
+        self.buf.set.clear();
+        if !set.is_empty() && self.buf.g.len() < n * n {
+            self.buf.g.resize(n * n, T::zero());
+            self.buf.mb.resize(n * n, T::zero());
         }
         for (a, &i) in set.iter().enumerate() {
-            if self.pos[i] != usize::MAX {
+            if self.buf.pos[i] != usize::MAX {
                 return Err(Decline::NotEligible);
             }
-            self.pos[i] = a;
-            self.vars[i] = Var::Z(i);
-            self.set.push(i);
-            self.mb[a * n..a * n + n].copy_from_slice(&self.cols[i][..n]);
+            self.buf.pos[i] = a;
+            self.buf.vars[i] = Var::Z(i);
+            self.buf.set.push(i);
+            self.buf.mb[a * n..a * n + n].copy_from_slice(&self.cols[i][..n]);
         }
         self.block_symmetric = set
             .iter()
@@ -627,7 +556,7 @@ impl<'a, T: Scalar> Kernel<'a, T> {
 
     /// The basic `z` (in `G`'s order).
     pub(crate) fn basic_set(&self) -> &[usize] {
-        &self.set
+        &self.buf.set
     }
 
     /// Takes the data `q`, `d` at `lambda0` on the current basis: the values
@@ -644,10 +573,10 @@ impl<'a, T: Scalar> Kernel<'a, T> {
         if q.nrows() != n || d.nrows() != n {
             return Err(Decline::NotEligible);
         }
-        for (dst, &x) in self.q[..n].iter_mut().zip(q.iter()) {
+        for (dst, &x) in self.buf.q[..n].iter_mut().zip(q.iter()) {
             *dst = x;
         }
-        for (dst, &x) in self.d[..n].iter_mut().zip(d.iter()) {
+        for (dst, &x) in self.buf.d[..n].iter_mut().zip(d.iter()) {
             *dst = x;
         }
         self.lambda = lambda0;
@@ -657,9 +586,9 @@ impl<'a, T: Scalar> Kernel<'a, T> {
             e => e,
         })?;
         let tie = T::from_f64(PRINCIPAL_TIE_EPS) * T::eps();
-        let zmax = self.z.iter().fold(T::one(), |a, &x| a.max(x.abs()));
-        let (pos, z, w) = (&self.pos[..n], &self.z[..n], &self.w[..n]);
-        let (qs, ds) = (&self.q[..n], &self.d[..n]);
+        let zmax = self.buf.z.iter().fold(T::one(), |a, &x| a.max(x.abs()));
+        let (pos, z, w) = (&self.buf.pos[..n], &self.buf.z[..n], &self.buf.w[..n]);
+        let (qs, ds) = (&self.buf.q[..n], &self.buf.d[..n]);
         for i in 0..n {
             let ok = if pos[i] != usize::MAX {
                 clearly_above(z[i], tie * zmax)
@@ -692,8 +621,8 @@ impl<'a, T: Scalar> Kernel<'a, T> {
             let (mut best, mut second, mut arg) = (T::max_value(), T::max_value(), usize::MAX);
             let (mut rate_max, mut rate_arg) = (T::zero(), T::zero());
             // (over slices of length n: no bounds checks in the loop)
-            let (pos, z, dz) = (&self.pos[..n], &self.z[..n], &self.dz[..n]);
-            let (w, dw) = (&self.w[..n], &self.dw[..n]);
+            let (pos, z, dz) = (&self.buf.pos[..n], &self.buf.z[..n], &self.buf.dz[..n]);
+            let (w, dw) = (&self.buf.w[..n], &self.buf.dw[..n]);
             for i in 0..n {
                 let (x, dx) = if pos[i] != usize::MAX {
                     (z[i], dz[i])
@@ -749,14 +678,14 @@ impl<'a, T: Scalar> Kernel<'a, T> {
             if !fresh {
                 self.advance(best, at);
             }
-            let (leaving, entering) = if self.pos[arg] != usize::MAX {
+            let (leaving, entering) = if self.buf.pos[arg] != usize::MAX {
                 if !fresh {
                     self.update_removal(arg);
                 }
                 self.remove(arg)?;
                 (Var::Z(arg), Var::W(arg))
             } else {
-                let dwj = self.dw[arg];
+                let dwj = self.buf.dw[arg];
                 self.add(arg)?;
                 if !fresh {
                     self.update_addition(arg, dwj);
@@ -798,11 +727,11 @@ impl<'a, T: Scalar> Kernel<'a, T> {
         let t = l - self.lambda;
         let (z, w) = (crate::linalg::col_slice_mut(&mut pt.z), &mut pt.w);
         for i in 0..n {
-            z[i] = self.z[i] + self.dz[i] * t;
+            z[i] = self.buf.z[i] + self.buf.dz[i] * t;
         }
         let w = crate::linalg::col_slice_mut(w);
         for i in 0..n {
-            w[i] = self.w[i] + self.dw[i] * t;
+            w[i] = self.buf.w[i] + self.buf.dw[i] * t;
         }
     }
 }
@@ -814,35 +743,35 @@ impl<T: Scalar> Kernel<'_, T> {
 
     /// Adds `j` to `B`: `G` bordered by `s = M_jj - v G u`.
     fn add(&mut self, j: usize) -> Result<(), Decline> {
-        let (n, kk) = (self.n, self.set.len());
-        if self.g.len() < n * n {
-            self.g.resize(n * n, T::zero());
-            self.mb.resize(n * n, T::zero());
+        let (n, kk) = (self.n, self.buf.set.len());
+        if self.buf.g.len() < n * n {
+            self.buf.g.resize(n * n, T::zero());
+            self.buf.mb.resize(n * n, T::zero());
         }
         // u = M_Bj, v = M_jB; gu = G u, vg = G' v
         for a in 0..kk {
-            self.u[a] = self.m(self.set[a], j);
-            self.v[a] = self.m(j, self.set[a]);
+            self.buf.u[a] = self.m(self.buf.set[a], j);
+            self.buf.v[a] = self.m(j, self.buf.set[a]);
         }
         axpys(
-            &mut self.gu,
+            &mut self.buf.gu,
             false,
-            &self.g,
-            &self.u,
+            &self.buf.g,
+            &self.buf.u,
             T::one(),
             (kk, kk, 1, n),
         );
-        let symmetric = self.block_symmetric && self.u[..kk] == self.v[..kk];
+        let symmetric = self.block_symmetric && self.buf.u[..kk] == self.buf.v[..kk];
         if symmetric {
             // v = u and G = G' (to rounding): G' v = G u
-            self.vg[..kk].copy_from_slice(&self.gu[..kk]);
+            self.buf.vg[..kk].copy_from_slice(&self.buf.gu[..kk]);
         } else {
-            col_dots(&self.g, n, kk, &self.v, &mut self.vg);
+            col_dots(&self.buf.g, n, kk, &self.buf.v, &mut self.buf.vg);
         }
         let mjj = self.m(j, j);
         let (mut vgu, mut mag) = (T::zero(), mjj.abs());
         for a in 0..kk {
-            let t = self.v[a] * self.gu[a];
+            let t = self.buf.v[a] * self.buf.gu[a];
             vgu += t;
             mag += t.abs();
         }
@@ -854,75 +783,75 @@ impl<T: Scalar> Kernel<'_, T> {
         self.block_symmetric = symmetric;
         // G + gu vg' / s, bordered by -gu / s, -vg' / s and 1 / s
         rank_one(
-            &mut self.g,
+            &mut self.buf.g,
             n,
             kk,
-            &self.gu,
-            &self.vg,
+            &self.buf.gu,
+            &self.buf.vg,
             inv,
             usize::MAX,
-            &mut self.gsum,
+            &mut self.buf.gsum,
         );
         for b in 0..kk {
-            let gb = -(self.vg[b] * inv);
-            self.g[b * n + kk] = gb;
-            self.gsum[b] += gb.abs();
-            self.g[kk * n + b] = -(self.gu[b] * inv);
+            let gb = -(self.buf.vg[b] * inv);
+            self.buf.g[b * n + kk] = gb;
+            self.buf.gsum[b] += gb.abs();
+            self.buf.g[kk * n + b] = -(self.buf.gu[b] * inv);
         }
-        self.g[kk * n + kk] = inv;
-        self.gsum[kk] = abs_sum(&self.g[kk * n..kk * n + kk + 1]);
-        self.mb[kk * n..kk * n + n].copy_from_slice(&self.cols[j][..n]);
-        self.pos[j] = kk;
-        self.vars[j] = Var::Z(j);
-        self.set.push(j);
+        self.buf.g[kk * n + kk] = inv;
+        self.buf.gsum[kk] = abs_sum(&self.buf.g[kk * n..kk * n + kk + 1]);
+        self.buf.mb[kk * n..kk * n + n].copy_from_slice(&self.cols[j][..n]);
+        self.buf.pos[j] = kk;
+        self.buf.vars[j] = Var::Z(j);
+        self.buf.set.push(j);
         self.after_pivot()
     }
 
     /// Takes `j` out of `B`: `G` contracted by its pivot `G_jj`.
     fn remove(&mut self, j: usize) -> Result<(), Decline> {
-        let (n, kk) = (self.n, self.set.len());
-        let p = self.pos[j];
-        let gpp = self.g[p * n + p];
+        let (n, kk) = (self.n, self.buf.set.len());
+        let p = self.buf.pos[j];
+        let gpp = self.buf.g[p * n + p];
         // G_jj = 1 / (Schur complement of S_{-j,-j} in S): positive beyond its
         // rounding (the terms of that complement are bounded by |G| |S|)
-        let mag = (0..kk).fold(T::zero(), |a, b| a.max(self.g[b * n + p].abs()));
+        let mag = (0..kk).fold(T::zero(), |a, b| a.max(self.buf.g[b * n + p].abs()));
         if !clearly_above(gpp, T::from_f64(PRINCIPAL_PIVOT_EPS) * T::eps() * mag) {
             return Err(Decline::SmallPivot);
         }
         for a in 0..kk {
-            self.u[a] = self.g[p * n + a]; // column p
-            self.v[a] = self.g[a * n + p]; // row p
+            self.buf.u[a] = self.buf.g[p * n + a]; // column p
+            self.buf.v[a] = self.buf.g[a * n + p]; // row p
         }
         // G - G_{:,p} G_{p,:} / G_pp (row and column p become junk, then the
         // last index moves into them)
         rank_one(
-            &mut self.g,
+            &mut self.buf.g,
             n,
             kk,
-            &self.u,
-            &self.v,
+            &self.buf.u,
+            &self.buf.v,
             -(T::one() / gpp),
             p,
-            &mut self.gsum,
+            &mut self.buf.gsum,
         );
         // the last index takes position p
         let last = kk - 1;
         if p != last {
             for a in 0..kk {
-                self.g[p * n + a] = self.g[last * n + a];
+                self.buf.g[p * n + a] = self.buf.g[last * n + a];
             }
             for b in 0..kk {
-                self.g[b * n + p] = self.g[b * n + last];
+                self.buf.g[b * n + p] = self.buf.g[b * n + last];
             }
-            self.gsum[p] = self.gsum[last];
-            self.mb.copy_within(last * n..last * n + n, p * n);
-            let moved = self.set[last];
-            self.set[p] = moved;
-            self.pos[moved] = p;
+            self.buf.gsum[p] = self.buf.gsum[last];
+            self.buf.mb.copy_within(last * n..last * n + n, p * n);
+            let moved = self.buf.set[last];
+            self.buf.set[p] = moved;
+            self.buf.pos[moved] = p;
         }
-        self.set.pop();
-        self.pos[j] = usize::MAX;
-        self.vars[j] = Var::W(j);
+        self.buf.set.pop();
+        self.buf.pos[j] = usize::MAX;
+        self.buf.vars[j] = Var::W(j);
         self.after_pivot()
     }
 
@@ -938,23 +867,23 @@ impl<T: Scalar> Kernel<'_, T> {
 
     /// `G` afresh from `S = M_BB` (LU with partial pivoting).
     fn invert(&mut self) -> Result<(), Decline> {
-        let (n, kk) = (self.n, self.set.len());
+        let (n, kk) = (self.n, self.buf.set.len());
         self.inversions += 1;
         self.pivots_since_inversion = 0;
         self.cond_now = None;
         if kk == 0 {
             return Ok(());
         }
-        let s = faer::Mat::<T>::from_fn(kk, kk, |a, b| self.m(self.set[a], self.set[b]));
+        let s = faer::Mat::<T>::from_fn(kk, kk, |a, b| self.m(self.buf.set[a], self.buf.set[b]));
         let Some((inv, _, _)) = crate::linalg::inverse_par(s.as_ref(), faer::Par::Seq) else {
             return Err(Decline::SmallPivot);
         };
         for b in 0..kk {
             for a in 0..kk {
-                self.g[b * n + a] = inv[(a, b)];
+                self.buf.g[b * n + a] = inv[(a, b)];
             }
         }
-        col_sums(&self.g, n, kk, &mut self.gsum);
+        col_sums(&self.buf.g, n, kk, &mut self.buf.gsum);
         Ok(())
     }
 
@@ -992,12 +921,12 @@ impl<T: Scalar> Kernel<'_, T> {
             Some(c) => c,
             None => {
                 // (|G|_1 from the column sums kept with G)
-                let kk = self.set.len();
+                let kk = self.buf.set.len();
                 let mut g1 = T::zero();
                 let mut mb1 = T::zero();
                 for b in 0..kk {
-                    g1 = g1.max(self.gsum[b]);
-                    mb1 = mb1.max(self.col_norm1[self.set[b]]);
+                    g1 = g1.max(self.buf.gsum[b]);
+                    mb1 = mb1.max(self.buf.col_norm1[self.buf.set[b]]);
                 }
                 let c = T::one().max(mb1).to_f64()
                     * T::one().max(g1 * (T::one() + self.m_norm1)).to_f64();
@@ -1021,15 +950,15 @@ impl<T: Scalar> Kernel<'_, T> {
     /// [`Self::values_updated`].
     fn advance(&mut self, t: T, at: T) {
         let n = self.n;
-        for &i in &self.set {
-            self.z[i] += self.dz[i] * t;
+        for &i in &self.buf.set {
+            self.buf.z[i] += self.buf.dz[i] * t;
         }
         // [w | dw] = [q + L d | dw] + M_{:,B} [z_B | delta]
-        let (w2, dw2) = self.w2.split_at_mut(n);
-        for ((w2, &q), &d) in w2.iter_mut().zip(&self.q[..n]).zip(&self.d[..n]) {
+        let (w2, dw2) = self.buf.w2.split_at_mut(n);
+        for ((w2, &q), &d) in w2.iter_mut().zip(&self.buf.q[..n]).zip(&self.buf.d[..n]) {
             *w2 = q + at * d;
         }
-        dw2[..n].copy_from_slice(&self.dw[..n]);
+        dw2[..n].copy_from_slice(&self.buf.dw[..n]);
     }
 
     /// The update of a removal of `j` (before `G` is contracted): the slopes
@@ -1037,18 +966,18 @@ impl<T: Scalar> Kernel<'_, T> {
     /// zero), those of `w` by `M_{:,B} delta`; `w` afresh from `z_B` (with
     /// `z_j = 0`), one product over `M_{:,B}`.
     fn update_removal(&mut self, j: usize) {
-        let (n, kk) = (self.n, self.set.len());
-        let p = self.pos[j];
-        let c = -(self.dz[j] / self.g[p * n + p]);
-        self.z[j] = T::zero();
+        let (n, kk) = (self.n, self.buf.set.len());
+        let p = self.buf.pos[j];
+        let c = -(self.buf.dz[j] / self.buf.g[p * n + p]);
+        self.buf.z[j] = T::zero();
         for a in 0..kk {
-            let i = self.set[a];
-            let delta = c * self.g[p * n + a];
-            self.zb2[a] = self.z[i];
-            self.zb2[n + a] = delta;
-            self.dz[i] += delta;
+            let i = self.buf.set[a];
+            let delta = c * self.buf.g[p * n + a];
+            self.buf.zb2[a] = self.buf.z[i];
+            self.buf.zb2[n + a] = delta;
+            self.buf.dz[i] += delta;
         }
-        self.dz[j] = T::zero();
+        self.buf.dz[j] = T::zero();
         self.product(kk);
     }
 
@@ -1056,16 +985,16 @@ impl<T: Scalar> Kernel<'_, T> {
     /// slope `w_j` had: `delta = -dwj G'_{:,j}` (so the slope of `w_j`
     /// becomes zero), as [`Self::update_removal`].
     fn update_addition(&mut self, j: usize, dwj: T) {
-        let (n, kk) = (self.n, self.set.len());
-        let p = self.pos[j];
-        self.z[j] = T::zero();
-        self.dz[j] = T::zero();
+        let (n, kk) = (self.n, self.buf.set.len());
+        let p = self.buf.pos[j];
+        self.buf.z[j] = T::zero();
+        self.buf.dz[j] = T::zero();
         for a in 0..kk {
-            let i = self.set[a];
-            let delta = -(dwj * self.g[p * n + a]);
-            self.zb2[a] = self.z[i];
-            self.zb2[n + a] = delta;
-            self.dz[i] += delta;
+            let i = self.buf.set[a];
+            let delta = -(dwj * self.buf.g[p * n + a]);
+            self.buf.zb2[a] = self.buf.z[i];
+            self.buf.zb2[n + a] = delta;
+            self.buf.dz[i] += delta;
         }
         self.product(kk);
     }
@@ -1074,10 +1003,10 @@ impl<T: Scalar> Kernel<'_, T> {
     fn product(&mut self, kk: usize) {
         let n = self.n;
         axpys(
-            &mut self.w2,
+            &mut self.buf.w2,
             true,
-            &self.mb,
-            &self.zb2,
+            &self.buf.mb,
+            &self.buf.zb2,
             T::one(),
             (n, kk, 2, n),
         );
@@ -1089,73 +1018,74 @@ impl<T: Scalar> Kernel<'_, T> {
     fn values_updated(&mut self) -> Result<Residual, Decline> {
         self.since_fresh += 1;
         let n = self.n;
-        self.w.copy_from_slice(&self.w2[..n]);
-        self.dw.copy_from_slice(&self.w2[n..]);
+        self.buf.w.copy_from_slice(&self.buf.w2[..n]);
+        self.buf.dw.copy_from_slice(&self.buf.w2[n..]);
         let r = self.rows_and_signs();
         self.settle(r)
     }
 
     fn values_once(&mut self) -> Residual {
-        let (n, kk) = (self.n, self.set.len());
+        let (n, kk) = (self.n, self.buf.set.len());
         let l = self.lambda;
         // [z_B | dz_B] = -G [q_B + L d_B | d_B]
         for a in 0..kk {
-            let i = self.set[a];
-            self.rhs2[a] = self.q[i] + l * self.d[i];
-            self.rhs2[n + a] = self.d[i];
+            let i = self.buf.set[a];
+            self.buf.rhs2[a] = self.buf.q[i] + l * self.buf.d[i];
+            self.buf.rhs2[n + a] = self.buf.d[i];
         }
         // [w | dw] = [q + L d | d] + M_{:,B} [z_B | dz_B]
-        let (w2, dw2) = self.w2.split_at_mut(n);
-        for ((w2, &q), &d) in w2.iter_mut().zip(&self.q[..n]).zip(&self.d[..n]) {
+        let (w2, dw2) = self.buf.w2.split_at_mut(n);
+        for ((w2, &q), &d) in w2.iter_mut().zip(&self.buf.q[..n]).zip(&self.buf.d[..n]) {
             *w2 = q + l * d;
         }
-        dw2[..n].copy_from_slice(&self.d[..n]);
+        dw2[..n].copy_from_slice(&self.buf.d[..n]);
         axpys(
-            &mut self.zb2,
+            &mut self.buf.zb2,
             false,
-            &self.g,
-            &self.rhs2,
+            &self.buf.g,
+            &self.buf.rhs2,
             -T::one(),
             (kk, kk, 2, n),
         );
         self.product(kk);
-        self.z.iter_mut().for_each(|x| *x = T::zero());
-        self.dz.iter_mut().for_each(|x| *x = T::zero());
+        self.buf.z.iter_mut().for_each(|x| *x = T::zero());
+        self.buf.dz.iter_mut().for_each(|x| *x = T::zero());
         for a in 0..kk {
-            let i = self.set[a];
-            self.z[i] = self.zb2[a];
-            self.dz[i] = self.zb2[n + a];
+            let i = self.buf.set[a];
+            self.buf.z[i] = self.buf.zb2[a];
+            self.buf.dz[i] = self.buf.zb2[n + a];
         }
-        self.w.copy_from_slice(&self.w2[..n]);
-        self.dw.copy_from_slice(&self.w2[n..]);
+        self.buf.w.copy_from_slice(&self.buf.w2[..n]);
+        self.buf.dw.copy_from_slice(&self.buf.w2[n..]);
         self.rows_and_signs()
     }
 
     /// The residual of `B`'s rows in `w` (then zeroed with their slopes) and
     /// the signs of the basic values.
     fn rows_and_signs(&mut self) -> Residual {
-        let (n, kk) = (self.n, self.set.len());
+        let (n, kk) = (self.n, self.buf.set.len());
         let l = self.lambda;
         // B's rows: w_B must vanish (relative to the row's terms, as the
         // engine's breakpoint residuals)
         let mut eq = 0.0f64;
         for a in 0..kk {
-            let i = self.set[a];
+            let i = self.buf.set[a];
             let s = T::one()
-                .max(self.q[i].abs())
-                .max((l * self.d[i]).abs())
-                .max((self.w[i] - self.q[i] - l * self.d[i]).abs());
-            eq = eq.max((self.w[i].abs() / s).to_f64());
-            self.w[i] = T::zero();
-            self.dw[i] = T::zero();
+                .max(self.buf.q[i].abs())
+                .max((l * self.buf.d[i]).abs())
+                .max((self.buf.w[i] - self.buf.q[i] - l * self.buf.d[i]).abs());
+            eq = eq.max((self.buf.w[i].abs() / s).to_f64());
+            self.buf.w[i] = T::zero();
+            self.buf.dw[i] = T::zero();
         }
         // feasibility: every basic value nonnegative beyond its rounding
         // (nothing to measure where no value is below zero, the usual case)
         let mut feas = 0.0f64;
         let negative = self
+            .buf
             .z
             .iter()
-            .chain(self.w.iter())
+            .chain(self.buf.w.iter())
             .fold(false, |a, &x| a | (x < T::zero()));
         if !negative {
             return Residual {
@@ -1164,15 +1094,15 @@ impl<T: Scalar> Kernel<'_, T> {
                 complementarity: 0.0,
             };
         }
-        let zmax = self.z.iter().fold(T::one(), |a, &x| a.max(x.abs()));
-        let wmax = self.w.iter().fold(T::one(), |a, &x| a.max(x.abs()));
+        let zmax = self.buf.z.iter().fold(T::one(), |a, &x| a.max(x.abs()));
+        let wmax = self.buf.w.iter().fold(T::one(), |a, &x| a.max(x.abs()));
         let tol = T::from_f64(PRINCIPAL_RESIDUAL_EPS) * T::eps();
         for i in 0..n {
-            if self.z[i] < -(tol * zmax) {
-                feas = feas.max((-self.z[i] / zmax).to_f64());
+            if self.buf.z[i] < -(tol * zmax) {
+                feas = feas.max((-self.buf.z[i] / zmax).to_f64());
             }
-            if self.w[i] < -(tol * wmax) {
-                feas = feas.max((-self.w[i] / wmax).to_f64());
+            if self.buf.w[i] < -(tol * wmax) {
+                feas = feas.max((-self.buf.w[i] / wmax).to_f64());
             }
         }
         Residual {
@@ -1195,10 +1125,10 @@ impl<T: Scalar> Kernel<'_, T> {
             lambda_to: to,
             unbounded,
             basis: self.basis(),
-            z_from: col(&self.z),
-            dz: col(&self.dz),
-            w_from: col(&self.w),
-            dw: col(&self.dw),
+            z_from: col(&self.buf.z),
+            dz: col(&self.buf.dz),
+            w_from: col(&self.buf.w),
+            dw: col(&self.buf.dw),
             u_from: Col::zeros(0),
             du: Col::zeros(0),
         }
@@ -1208,14 +1138,14 @@ impl<T: Scalar> Kernel<'_, T> {
         let t = l - self.lambda;
         Point {
             lambda: l,
-            z: Col::from_fn(self.n, |i| self.z[i] + self.dz[i] * t),
-            w: Col::from_fn(self.n, |i| self.w[i] + self.dw[i] * t),
+            z: Col::from_fn(self.n, |i| self.buf.z[i] + self.buf.dz[i] * t),
+            w: Col::from_fn(self.n, |i| self.buf.w[i] + self.buf.dw[i] * t),
             u: Col::zeros(0),
         }
     }
 
     /// The complementary basis: `Z(i)` for `i` in `B`, else `W(i)`.
     pub(crate) fn basis(&self) -> Vec<Var> {
-        self.vars.clone()
+        self.buf.vars.clone()
     }
 }
