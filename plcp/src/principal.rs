@@ -966,32 +966,29 @@ impl<T: Scalar> Kernel<'_, T> {
     /// zero), those of `w` by `M_{:,B} delta`; `w` afresh from `z_B` (with
     /// `z_j = 0`), one product over `M_{:,B}`.
     fn update_removal(&mut self, j: usize) {
-        let (n, kk) = (self.n, self.buf.set.len());
         let p = self.buf.pos[j];
-        let c = -(self.buf.dz[j] / self.buf.g[p * n + p]);
+        let c = -(self.buf.dz[j] / self.buf.g[p * self.n + p]);
         self.buf.z[j] = T::zero();
-        for a in 0..kk {
-            let i = self.buf.set[a];
-            let delta = c * self.buf.g[p * n + a];
-            self.buf.zb2[a] = self.buf.z[i];
-            self.buf.zb2[n + a] = delta;
-            self.buf.dz[i] += delta;
-        }
+        self.update_along(p, c);
         self.buf.dz[j] = T::zero();
-        self.product(kk);
     }
 
     /// The update of an addition of `j` (after `G` is bordered), `dwj` the
     /// slope `w_j` had: `delta = -dwj G'_{:,j}` (so the slope of `w_j`
     /// becomes zero), as [`Self::update_removal`].
     fn update_addition(&mut self, j: usize, dwj: T) {
-        let (n, kk) = (self.n, self.buf.set.len());
-        let p = self.buf.pos[j];
         self.buf.z[j] = T::zero();
         self.buf.dz[j] = T::zero();
+        self.update_along(self.buf.pos[j], -dwj);
+    }
+
+    /// The slopes of `z_B` by `delta = c G_{:,p}` (`G[a + p n]`), and
+    /// `[w | dw]` from `[z_B | delta]` by one product over `M_{:,B}`.
+    fn update_along(&mut self, p: usize, c: T) {
+        let (n, kk) = (self.n, self.buf.set.len());
         for a in 0..kk {
             let i = self.buf.set[a];
-            let delta = -(dwj * self.buf.g[p * n + a]);
+            let delta = c * self.buf.g[p * n + a];
             self.buf.zb2[a] = self.buf.z[i];
             self.buf.zb2[n + a] = delta;
             self.buf.dz[i] += delta;

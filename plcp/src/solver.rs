@@ -233,7 +233,7 @@ impl<'a, T: Scalar> Solver<'a, T> {
         }
         let mut rec: crate::principal::Record<T> = (Vec::new(), Vec::new());
         let run = self.kernel_run(q, d, lambda_max, Some(&mut rec));
-        let k = self.kernel.as_mut()?;
+        let k = self.kernel.as_mut().expect("a live kernel");
         let path = run.ok().map(|pivots| Path {
             status: Status::Reached,
             lambda0: T::zero(),

@@ -193,6 +193,9 @@ fn principal<T: Scalar>(
     } else if !problem.lambda_max().is_some_and(|l| l.is_finite()) {
         "not tried: no finite L_max"
     } else if problem.n() > crate::tolerance::PRINCIPAL_MAX_N {
+        // (a `&'static str`: the number is written out, and the build fails
+        // where it and the constant part)
+        const _: () = assert!(crate::tolerance::PRINCIPAL_MAX_N == 800);
         "not tried: order above PRINCIPAL_MAX_N = 800"
     } else {
         ""

@@ -15,15 +15,7 @@ fn low_rank(n: usize) -> Plcp<f64> {
     let vals: Vec<f64> = (0..199).map(|i| ((i * 37 % 101) as f64) / 101.0).collect();
     let mut it = vals.iter().cycle().copied();
     let b = Mat::<f64>::from_fn(n, n, |_, _| 2.0 * it.next().unwrap() - 1.0);
-    let bt = b.transpose().to_owned();
-    let m = Mat::<f64>::from_fn(n, n, |i, j| {
-        let (ci, cj) = (bt.col(i), bt.col(j));
-        let mut s = 0.0;
-        for l in 0..n {
-            s += ci[l] * cj[l];
-        }
-        s / n as f64 + if i == j { 0.1 } else { 0.0 }
-    });
+    let m = crate::common::gram_shifted(b.as_ref(), 0.1);
     let q = Col::<f64>::from_fn(n, |_| 0.1 + 0.9 * it.next().unwrap());
     let d = Col::<f64>::from_fn(n, |_| 2.0 * it.next().unwrap() - 1.5);
     Plcp::new(m.as_ref(), q.as_ref(), d.as_ref())

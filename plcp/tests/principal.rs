@@ -63,16 +63,8 @@ fn family(n: usize, vals: &[f64], shift: f64, skew: f64, lmax: f64) -> Plcp<f64>
     let mut it = vals.iter().cycle().copied();
     let b = Mat::<f64>::from_fn(n, n, |_, _| 2.0 * it.next().unwrap() - 1.0);
     let k = Mat::<f64>::from_fn(n, n, |_, _| it.next().unwrap() - 0.5);
-    // B' by columns: the sums below run down contiguous columns
-    let bt = b.transpose().to_owned();
-    let m = Mat::<f64>::from_fn(n, n, |i, j| {
-        let (ci, cj) = (bt.col(i), bt.col(j));
-        let mut s = 0.0;
-        for l in 0..n {
-            s += ci[l] * cj[l];
-        }
-        s / n as f64 + if i == j { shift } else { 0.0 } + skew * (k[(i, j)] - k[(j, i)])
-    });
+    let g = crate::common::gram_shifted(b.as_ref(), shift);
+    let m = Mat::<f64>::from_fn(n, n, |i, j| g[(i, j)] + skew * (k[(i, j)] - k[(j, i)]));
     let q = Col::<f64>::from_fn(n, |_| 0.1 + 0.9 * it.next().unwrap());
     let d = Col::<f64>::from_fn(n, |_| 2.0 * it.next().unwrap() - 1.5);
     Plcp::new(m.as_ref(), q.as_ref(), d.as_ref())

@@ -143,6 +143,23 @@ pub fn dump_instance(name: &str, inst: &Instance) -> String {
 
 // ---------------------------------------------------------------- generators
 
+/// `B B' / n + shift I` for a square `B` of order `n`, each entry summed in
+/// a plain loop down `B'`'s contiguous columns (no faer product: under load
+/// its thread pool made small products slow), in the same order for every
+/// caller, so equal `B`s give equal bits.
+pub fn gram_shifted(b: MatRef<'_, f64>, shift: f64) -> Mat<f64> {
+    let n = b.nrows();
+    let bt = b.transpose().to_owned();
+    Mat::<f64>::from_fn(n, n, |i, j| {
+        let (ci, cj) = (bt.col(i), bt.col(j));
+        let mut s = 0.0;
+        for l in 0..n {
+            s += ci[l] * cj[l];
+        }
+        s / n as f64 + if i == j { shift } else { 0.0 }
+    })
+}
+
 /// `B B'` for a row-major `n x r` matrix `b` (exact for dyadic entries).
 pub fn gram(b: &[f64], n: usize, r: usize) -> Mat<f64> {
     Mat::from_fn(n, n, |i, j| {
