@@ -400,6 +400,14 @@ pub fn solve_lcp<T: Scalar>(
     lcp: &Lcp<T>,
     settings: &Settings<T>,
 ) -> Result<LcpSolution<T>, PlcpError> {
+    T::entry_solve_lcp(lcp, settings)
+}
+
+/// [`solve_lcp`]'s body, instantiated in this crate (`entry.rs`).
+pub(crate) fn solve_lcp_here<T: Scalar>(
+    lcp: &Lcp<T>,
+    settings: &Settings<T>,
+) -> Result<LcpSolution<T>, PlcpError> {
     settings.validate(lcp.n())?;
     let timer = std::time::Instant::now();
     let n = lcp.n();

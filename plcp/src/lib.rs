@@ -61,6 +61,7 @@
 // observers and their memory model).
 // Everything else is the engine's inside.
 mod basis;
+mod entry;
 mod error;
 mod escalate;
 mod evidence;
@@ -117,6 +118,15 @@ pub use solver::{warm_up, Solver, StepEnd};
 /// problem whose free block is singular (use [`Method::Wolfe`] there). Every
 /// outcome of the algorithm itself is a [`Status`] in the returned path.
 pub fn solve<T: Scalar>(problem: &Plcp<T>, settings: &Settings<T>) -> Result<Path<T>, PlcpError> {
+    T::entry_solve(problem, settings)
+}
+
+/// [`solve`]'s body, instantiated in this crate for the three types
+/// (`entry.rs`).
+pub(crate) fn solve_here<T: Scalar>(
+    problem: &Plcp<T>,
+    settings: &Settings<T>,
+) -> Result<Path<T>, PlcpError> {
     let mut path = trace::trace(problem, settings)?;
     path.info.path_bytes = observe::path_bytes(&path);
     if settings.escalate && escalate::needs_fx128(&path) {
@@ -168,7 +178,7 @@ pub fn solve_certified<T: Scalar>(
     settings: &Settings<T>,
 ) -> Result<Path<T>, PlcpError> {
     let mut path = solve(problem, settings)?;
-    let cert = escalate::certify_escalating(problem, settings, &mut path);
+    let cert = T::entry_certify_escalating(problem, settings, &mut path);
     reject_uncertified(&mut path, &cert);
     path.info.certificate = Some(cert);
     Ok(path)

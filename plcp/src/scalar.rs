@@ -7,6 +7,10 @@ use faer::traits::math_utils;
 use faer::traits::RealField;
 
 /// A real floating-point type the solvers run in: `f32`, `f64` or [`faer::fx128`].
+///
+/// Implemented for these three types only: its hidden methods are the
+/// entry points of the engine, compiled once in this crate for each of them
+/// (`entry.rs`), so that a caller's build does not compile the engine again.
 pub trait Scalar: RealField + Copy + Send + Sync + core::ops::Neg<Output = Self> + 'static {
     /// A short name: `"f32"`, `"f64"`, `"f128"`.
     const NAME: &'static str;
@@ -129,9 +133,81 @@ pub trait Scalar: RealField + Copy + Send + Sync + core::ops::Neg<Output = Self>
     fn max_value() -> Self {
         math_utils::max_positive::<Self>()
     }
+
+    /// [`crate::solve`], compiled in this crate (`entry.rs`).
+    #[doc(hidden)]
+    fn entry_solve(
+        problem: &crate::Plcp<Self>,
+        settings: &crate::Settings<Self>,
+    ) -> Result<crate::Path<Self>, crate::PlcpError>;
+
+    /// the certification of [`crate::solve_certified`], compiled in this crate (`entry.rs`).
+    #[doc(hidden)]
+    fn entry_certify_escalating(
+        problem: &crate::Plcp<Self>,
+        settings: &crate::Settings<Self>,
+        path: &mut crate::Path<Self>,
+    ) -> crate::exact::Certificate;
+
+    /// [`crate::exact::certify_with`], compiled in this crate (`entry.rs`).
+    #[doc(hidden)]
+    fn entry_certify_with(
+        problem: &crate::Plcp<Self>,
+        path: &crate::Path<Self>,
+        engine: crate::exact::Engine,
+    ) -> crate::exact::Certificate;
+
+    /// [`crate::exact::trace`], compiled in this crate (`entry.rs`).
+    #[doc(hidden)]
+    fn entry_exact_trace(
+        problem: &crate::Plcp<Self>,
+        settings: &crate::Settings<Self>,
+    ) -> Result<crate::exact::ExactPath, crate::PlcpError>;
+
+    /// [`crate::exact::trace_from`], compiled in this crate (`entry.rs`).
+    #[doc(hidden)]
+    fn entry_exact_trace_from(
+        problem: &crate::Plcp<Self>,
+        settings: &crate::Settings<Self>,
+        basis: &[crate::Var],
+        lambda: Self,
+    ) -> Result<crate::exact::ExactPath, crate::PlcpError>;
+
+    /// [`crate::solve_lcp`], compiled in this crate (`entry.rs`).
+    #[doc(hidden)]
+    fn entry_solve_lcp(
+        lcp: &crate::Lcp<Self>,
+        settings: &crate::Settings<Self>,
+    ) -> Result<crate::LcpSolution<Self>, crate::PlcpError>;
+
+    /// the fast path of [`crate::solve_observed`], compiled in this crate (`entry.rs`).
+    #[doc(hidden)]
+    fn entry_principal_measured(
+        problem: &crate::Plcp<Self>,
+        settings: &crate::Settings<Self>,
+    ) -> Result<crate::Path<Self>, &'static str>;
+
+    /// [`crate::Solver::path`] (and `lcp`, `step`), compiled in this crate (`entry.rs`).
+    #[doc(hidden)]
+    fn entry_solver_path(
+        solver: &mut crate::Solver<'_, Self>,
+        q: faer::ColRef<'_, Self>,
+        d: faer::ColRef<'_, Self>,
+        lambda_max: Self,
+    ) -> Result<crate::Path<Self>, crate::PlcpError>;
+
+    /// [`crate::Solver::path_end`] (and `lcp_end`, `step_end`), compiled in this crate (`entry.rs`).
+    #[doc(hidden)]
+    fn entry_solver_path_end(
+        solver: &mut crate::Solver<'_, Self>,
+        q: faer::ColRef<'_, Self>,
+        d: faer::ColRef<'_, Self>,
+        lambda_max: Self,
+    ) -> Result<(), crate::PlcpError>;
 }
 
 impl Scalar for f32 {
+    crate::entry::compiled_here!();
     const NAME: &'static str = "f32";
     const NATIVE: bool = true;
     type Wide = f64;
@@ -158,6 +234,7 @@ impl Scalar for f32 {
 }
 
 impl Scalar for f64 {
+    crate::entry::compiled_here!();
     const NAME: &'static str = "f64";
     const NATIVE: bool = true;
     type Wide = faer::fx128;
@@ -202,6 +279,7 @@ impl Scalar for f64 {
 }
 
 impl Scalar for faer::fx128 {
+    crate::entry::compiled_here!();
     const NAME: &'static str = "f128";
     const NATIVE: bool = false;
     type Wide = faer::fx128;

@@ -165,6 +165,16 @@ impl<'a, T: Scalar> Solver<'a, T> {
         d: ColRef<'_, T>,
         lambda_max: T,
     ) -> Result<Path<T>, PlcpError> {
+        T::entry_solver_path(self, q, d, lambda_max)
+    }
+
+    /// [`Self::path`]'s body, instantiated in this crate (`entry.rs`).
+    pub(crate) fn path_here(
+        &mut self,
+        q: ColRef<'_, T>,
+        d: ColRef<'_, T>,
+        lambda_max: T,
+    ) -> Result<Path<T>, PlcpError> {
         self.check_data(q, d)?;
         let timer = std::time::Instant::now();
         if let Some(path) = self.kernel_path(q, d, lambda_max, timer) {
@@ -349,6 +359,17 @@ impl<'a, T: Scalar> Solver<'a, T> {
     }
 
     fn path_end_inner(
+        &mut self,
+        q: ColRef<'_, T>,
+        d: ColRef<'_, T>,
+        lambda_max: T,
+    ) -> Result<(), PlcpError> {
+        T::entry_solver_path_end(self, q, d, lambda_max)
+    }
+
+    /// [`Self::path_end_inner`]'s body, instantiated in this crate
+    /// (`entry.rs`).
+    pub(crate) fn path_end_here(
         &mut self,
         q: ColRef<'_, T>,
         d: ColRef<'_, T>,

@@ -157,6 +157,14 @@ pub(crate) fn principal_measured<T: Scalar>(
     problem: &Plcp<T>,
     settings: &Settings<T>,
 ) -> Result<Path<T>, &'static str> {
+    T::entry_principal_measured(problem, settings)
+}
+
+/// [`principal_measured`]'s body, instantiated in this crate (`entry.rs`).
+pub(crate) fn principal_measured_here<T: Scalar>(
+    problem: &Plcp<T>,
+    settings: &Settings<T>,
+) -> Result<Path<T>, &'static str> {
     if settings.validate(problem.n()).is_err() {
         return Err("not tried: invalid settings");
     }

@@ -48,6 +48,9 @@ mod trace;
 
 pub use certify::{certify, certify_with, Certificate, Engine, Failure};
 pub use trace::{trace, trace_from, ExactPath, EXACT_MAX_DIM};
+// the bodies the entry points call (`crate::entry`)
+pub(crate) use certify::certify_here;
+pub(crate) use trace::{trace_from_here, trace_here};
 
 use num_bigint::BigInt;
 use num_rational::BigRational;

@@ -101,6 +101,14 @@ impl ExactSegment {
 /// is singular; every outcome of the method is a [`Status`] as usual.
 /// `settings.max_pivots` is honoured; tolerances have no role.
 pub fn trace<T: Scalar>(problem: &Plcp<T>, settings: &Settings<T>) -> Result<ExactPath, PlcpError> {
+    T::entry_exact_trace(problem, settings)
+}
+
+/// [`trace`]'s body, instantiated in this crate (`entry.rs`).
+pub(crate) fn trace_here<T: Scalar>(
+    problem: &Plcp<T>,
+    settings: &Settings<T>,
+) -> Result<ExactPath, PlcpError> {
     let timer = Instant::now();
     let mut t = setup(problem)?;
     let l0 = to_rational(problem.lambda0());
@@ -121,6 +129,16 @@ pub fn trace<T: Scalar>(problem: &Plcp<T>, settings: &Settings<T>) -> Result<Exa
 /// `Err` when the basis is not complementary, singular, or infeasible at
 /// `lambda`, and for the limits of [`trace`].
 pub fn trace_from<T: Scalar>(
+    problem: &Plcp<T>,
+    settings: &Settings<T>,
+    basis: &[Var],
+    lambda: T,
+) -> Result<ExactPath, PlcpError> {
+    T::entry_exact_trace_from(problem, settings, basis, lambda)
+}
+
+/// [`trace_from`]'s body, instantiated in this crate (`entry.rs`).
+pub(crate) fn trace_from_here<T: Scalar>(
     problem: &Plcp<T>,
     settings: &Settings<T>,
     basis: &[Var],

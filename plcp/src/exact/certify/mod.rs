@@ -201,6 +201,15 @@ pub fn certify<T: Scalar>(problem: &Plcp<T>, path: &Path<T>) -> Certificate {
 /// [`certify`] with the given [`Engine`] (the certificate is the same; the
 /// fraction-free one is kept as a reference and for comparisons).
 pub fn certify_with<T: Scalar>(problem: &Plcp<T>, path: &Path<T>, engine: Engine) -> Certificate {
+    T::entry_certify_with(problem, path, engine)
+}
+
+/// [`certify_with`]'s body, instantiated in this crate (`entry.rs`).
+pub(crate) fn certify_here<T: Scalar>(
+    problem: &Plcp<T>,
+    path: &Path<T>,
+    engine: Engine,
+) -> Certificate {
     let timer = Instant::now();
     let mut cert = Certificate::default();
     let result = run(problem, path, engine, &mut cert);
