@@ -134,80 +134,12 @@ pub trait Scalar: RealField + Copy + Send + Sync + core::ops::Neg<Output = Self>
         math_utils::max_positive::<Self>()
     }
 
-    /// [`crate::solve`], compiled in this crate (`entry.rs`).
-    #[doc(hidden)]
-    fn entry_solve(
-        problem: &crate::Plcp<Self>,
-        settings: &crate::Settings<Self>,
-    ) -> Result<crate::Path<Self>, crate::PlcpError>;
-
-    /// the certification of [`crate::solve_certified`], compiled in this crate (`entry.rs`).
-    #[doc(hidden)]
-    fn entry_certify_escalating(
-        problem: &crate::Plcp<Self>,
-        settings: &crate::Settings<Self>,
-        path: &mut crate::Path<Self>,
-    ) -> crate::exact::Certificate;
-
-    /// [`crate::exact::certify_with`], compiled in this crate (`entry.rs`).
-    #[doc(hidden)]
-    fn entry_certify_with(
-        problem: &crate::Plcp<Self>,
-        path: &crate::Path<Self>,
-        engine: crate::exact::Engine,
-    ) -> crate::exact::Certificate;
-
-    /// [`crate::exact::trace`], compiled in this crate (`entry.rs`).
-    #[doc(hidden)]
-    fn entry_exact_trace(
-        problem: &crate::Plcp<Self>,
-        settings: &crate::Settings<Self>,
-    ) -> Result<crate::exact::ExactPath, crate::PlcpError>;
-
-    /// [`crate::exact::trace_from`], compiled in this crate (`entry.rs`).
-    #[doc(hidden)]
-    fn entry_exact_trace_from(
-        problem: &crate::Plcp<Self>,
-        settings: &crate::Settings<Self>,
-        basis: &[crate::Var],
-        lambda: Self,
-    ) -> Result<crate::exact::ExactPath, crate::PlcpError>;
-
-    /// [`crate::solve_lcp`], compiled in this crate (`entry.rs`).
-    #[doc(hidden)]
-    fn entry_solve_lcp(
-        lcp: &crate::Lcp<Self>,
-        settings: &crate::Settings<Self>,
-    ) -> Result<crate::LcpSolution<Self>, crate::PlcpError>;
-
-    /// the fast path of [`crate::solve_observed`], compiled in this crate (`entry.rs`).
-    #[doc(hidden)]
-    fn entry_principal_measured(
-        problem: &crate::Plcp<Self>,
-        settings: &crate::Settings<Self>,
-    ) -> Result<crate::Path<Self>, &'static str>;
-
-    /// [`crate::Solver::path`] (and `lcp`, `step`), compiled in this crate (`entry.rs`).
-    #[doc(hidden)]
-    fn entry_solver_path(
-        solver: &mut crate::Solver<'_, Self>,
-        q: faer::ColRef<'_, Self>,
-        d: faer::ColRef<'_, Self>,
-        lambda_max: Self,
-    ) -> Result<crate::Path<Self>, crate::PlcpError>;
-
-    /// [`crate::Solver::path_end`] (and `lcp_end`, `step_end`), compiled in this crate (`entry.rs`).
-    #[doc(hidden)]
-    fn entry_solver_path_end(
-        solver: &mut crate::Solver<'_, Self>,
-        q: faer::ColRef<'_, Self>,
-        d: faer::ColRef<'_, Self>,
-        lambda_max: Self,
-    ) -> Result<(), crate::PlcpError>;
+    // the engine's entry points, compiled in this crate (`entry.rs`)
+    crate::entry::entry_points!(declare);
 }
 
 impl Scalar for f32 {
-    crate::entry::compiled_here!();
+    crate::entry::entry_points!(define);
     const NAME: &'static str = "f32";
     const NATIVE: bool = true;
     type Wide = f64;
@@ -234,7 +166,7 @@ impl Scalar for f32 {
 }
 
 impl Scalar for f64 {
-    crate::entry::compiled_here!();
+    crate::entry::entry_points!(define);
     const NAME: &'static str = "f64";
     const NATIVE: bool = true;
     type Wide = faer::fx128;
@@ -279,7 +211,7 @@ impl Scalar for f64 {
 }
 
 impl Scalar for faer::fx128 {
-    crate::entry::compiled_here!();
+    crate::entry::entry_points!(define);
     const NAME: &'static str = "f128";
     const NATIVE: bool = false;
     type Wide = faer::fx128;
