@@ -15,6 +15,11 @@
 //! `tiny`: the tiny call of issue 20 (`n = 2`, one pivot; the file argument
 //! is not read). One thread (`Settings::threads = Some(1)`) unless
 //! `THREADS=default` (the library's choice by size).
+//!
+//! `FAULTS=1` (`solve`): each call's time and minor page faults on standard
+//! error (`first` prints the faults of its two solves always). A fresh
+//! process's first solve touches new memory, and on a virtualised machine a
+//! new page costs microseconds.
 
 use plcp::Settings;
 use std::time::Instant;
@@ -61,12 +66,16 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             if std::env::var_os("WARM").is_some() {
                 plcp::warm_up();
             }
+            let f0 = minflt();
             let t = Instant::now();
             let path = plcp::solve(&problem, &settings)?;
             let d = t.elapsed().as_secs_f64();
+            let f1 = minflt();
             let t = Instant::now();
             let path2 = plcp::solve(&problem, &settings)?;
             let e = t.elapsed().as_secs_f64();
+            let f2 = minflt();
+            eprintln!("faults: first solve {}, again {}", f1 - f0, f2 - f1);
             std::hint::black_box((&path, &path2, &v3));
             println!(
                 "warm_up {:.1} us, pulp::Arch::new {:.1} us, first matmul {:.1} us, first lu inverse {:.1} us, solve {:.1} us, again {:.1} us",
@@ -161,14 +170,30 @@ fn time_solves(
     reps: usize,
 ) -> Result<(f64, f64, usize), plcp::PlcpError> {
     let (mut best, mut total, mut pivots) = (f64::INFINITY, 0.0, 0);
+    let faults = std::env::var_os("FAULTS").is_some();
     for _ in 0..reps {
+        let f0 = if faults { minflt() } else { 0 };
         let t = Instant::now();
         let path = plcp::solve(problem, settings)?;
         let s = t.elapsed().as_secs_f64();
+        if faults {
+            eprintln!("{:.1} us, {} faults", 1e6 * s, minflt() - f0);
+        }
         std::hint::black_box(&path);
         best = best.min(s);
         total += s;
         pivots = path.info.pivots;
     }
     Ok((best, total, pivots))
+}
+
+/// The process's minor page faults so far (`/proc/self/stat`, field 10; 0
+/// where it cannot be read).
+fn minflt() -> u64 {
+    let s = std::fs::read_to_string("/proc/self/stat").unwrap_or_default();
+    let rest = s.rsplit(')').next().unwrap_or("");
+    rest.split_whitespace()
+        .nth(7)
+        .and_then(|x| x.parse().ok())
+        .unwrap_or(0)
 }
